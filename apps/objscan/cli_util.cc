@@ -1,0 +1,65 @@
+#include "cli_util.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "objscan/common/error.h"
+
+namespace objscan::app {
+namespace {
+bool g_bar_drawn = false;  // only the app's own terminal state; the library has no globals
+}
+
+ProgressCallback TerminalProgress(const std::string& label) {
+  if (!isatty(STDERR_FILENO)) return nullptr;
+  return [label](double fraction, const std::string& what) {
+    const int width = 30;
+    const int filled = static_cast<int>(std::lround(std::clamp(fraction, 0.0, 1.0) * width));
+    std::fprintf(stderr, "\r%s [%s%s] %3d%% %-40.40s", label.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), static_cast<int>(std::lround(100 * fraction)),
+                 what.c_str());
+    std::fflush(stderr);
+    g_bar_drawn = true;
+  };
+}
+
+void FinishProgress() {
+  if (g_bar_drawn) std::fprintf(stderr, "\n");
+  g_bar_drawn = false;
+}
+
+PoseArg ParsePoseArg(const std::string& text, const std::string& option_name) {
+  std::vector<double> values;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
+      throw InputError(option_name + " '" + text + "': '" + item + "' is not a number (expected x,y,z,yaw_deg,pitch_deg)");
+    }
+    values.push_back(v);
+  }
+  if (values.size() != 5) {
+    throw InputError(option_name + " '" + text + "': expected 5 comma-separated numbers x,y,z,yaw_deg,pitch_deg");
+  }
+  return PoseArg{values[0], values[1], values[2], values[3], values[4]};
+}
+
+void WriteFileAtomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw InputError(path + ": cannot write");
+    out << text;
+    if (!out) throw InputError(path + ": write failed");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace objscan::app

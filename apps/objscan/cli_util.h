@@ -1,0 +1,25 @@
+#pragma once
+// Helpers shared by the subcommands: progress bar on a terminal, pose strings, JSON on stdout,
+// loading the effective configuration.
+#include <string>
+#include <vector>
+
+#include "objscan/common/progress.h"
+
+namespace objscan::app {
+
+// A progress callback drawing a bar on stderr when stderr is a terminal, nothing otherwise.
+ProgressCallback TerminalProgress(const std::string& label);
+// Ends the bar line (if one was drawn).
+void FinishProgress();
+
+// Parses "x,y,z,yaw_deg,pitch_deg"; throws InputError naming the option on bad input.
+struct PoseArg {
+  double x = 0, y = 0, z = 0, yaw_deg = 0, pitch_deg = 0;
+};
+PoseArg ParsePoseArg(const std::string& text, const std::string& option_name);
+
+// Writes text to `path` atomically (temporary file, then rename): a failure leaves no half file.
+void WriteFileAtomic(const std::string& path, const std::string& text);
+
+}  // namespace objscan::app

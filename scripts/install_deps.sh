@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of objscan through Debian packages (Debian 12).
+# Idempotent: packages already present are left alone. Run as root.
+# Optional peers for benchmarks: OBJSCAN_WITH_PEERS=1 also installs Open3D.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libeigen3-dev libembree-dev libpcl-dev liboctomap-dev libboost-graph-dev
+  libassimp-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpng-dev zlib1g-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then
+  packages+=(libopen3d-dev)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "install_deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+if [[ $(id -u) -ne 0 ]]; then
+  echo "install_deps: missing packages (${missing[*]}); run this script as root" >&2
+  exit 1
+fi
+
+echo "install_deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"

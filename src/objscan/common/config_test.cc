@@ -1,0 +1,89 @@
+#include "objscan/common/config.h"
+
+#include <gtest/gtest.h>
+
+namespace objscan::config {
+namespace {
+
+struct Inner {
+  double size_m = 0.5;
+  std::vector<double> weights = {1.0, 2.0};
+  template <class V>
+  void Visit(V& v) {
+    v("size_m", size_m);
+    v("weights", weights);
+  }
+  void Validate() const { RequirePositive("inner.size_m", size_m); }
+};
+
+struct Outer {
+  int count = 3;
+  bool noise = true;
+  std::string name = "a";
+  Inner inner;
+  template <class V>
+  void Visit(V& v) {
+    v("count", count);
+    v("noise", noise);
+    v("name", name);
+    v("inner", inner);
+  }
+  void Validate() const { inner.Validate(); }
+};
+
+TEST(ConfigTest, AppliesYamlAndOverrides) {
+  RawConfig raw = RawConfig::FromYamlString("count: 7\ninner:\n  size_m: 0.25\n  weights: [3, 4.5]\n", "t.yaml");
+  raw.SetFromAssignment("noise=false");
+  Outer o;
+  Apply(raw, &o);
+  EXPECT_EQ(o.count, 7);
+  EXPECT_FALSE(o.noise);
+  EXPECT_DOUBLE_EQ(o.inner.size_m, 0.25);
+  ASSERT_EQ(o.inner.weights.size(), 2u);
+  EXPECT_DOUBLE_EQ(o.inner.weights[1], 4.5);
+  EXPECT_EQ(o.name, "a");
+}
+
+TEST(ConfigTest, RejectsUnknownKeyNamingIt) {
+  RawConfig raw = RawConfig::FromYamlString("inner:\n  sise_m: 0.25\n", "t.yaml");
+  Outer o;
+  try {
+    Apply(raw, &o);
+    FAIL() << "unknown key accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("inner.sise_m"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("t.yaml"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ConfigTest, RejectsBadValuesAndInvalidRanges) {
+  Outer o;
+  RawConfig bad_type;
+  bad_type.SetFromAssignment("count=three");
+  EXPECT_THROW(Apply(bad_type, &o), ConfigError);
+  RawConfig bad_range;
+  bad_range.SetFromAssignment("inner.size_m=-1");
+  EXPECT_THROW(Apply(bad_range, &o), ConfigError);
+  RawConfig nan_value;
+  nan_value.SetFromAssignment("inner.size_m=nan");
+  EXPECT_THROW(Apply(nan_value, &o), ConfigError);
+  RawConfig not_assignment;
+  EXPECT_THROW(not_assignment.SetFromAssignment("count"), ConfigError);
+  EXPECT_THROW(RawConfig::FromYamlString("a: [1, 2\n", "broken.yaml"), InputError);
+}
+
+TEST(ConfigTest, DumpRoundTripsThroughYaml) {
+  Outer a;
+  a.count = 11;
+  a.inner.weights = {0.5};
+  const std::string yaml = ToYaml(Dump(a));
+  Outer b;
+  Apply(RawConfig::FromYamlString(yaml, "dump"), &b);
+  EXPECT_EQ(b.count, 11);
+  ASSERT_EQ(b.inner.weights.size(), 1u);
+  EXPECT_DOUBLE_EQ(b.inner.weights[0], 0.5);
+  EXPECT_NE(ToJson(Dump(a)).find("\"size_m\": 0.5"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace objscan::config
