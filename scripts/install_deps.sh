@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libembree-dev libpcl-dev liboctomap-dev libboost-graph-dev
-  libassimp-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpng-dev zlib1g-dev
+  libassimp-dev libtinyxml2-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then

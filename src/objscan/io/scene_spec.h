@@ -1,0 +1,33 @@
+#pragma once
+// Loads a scene from a SPEC: a Gazebo .world file, an objscan scene file (.yaml/.json), a mesh file
+// (obj, ply, off, dae, stl, gltf, glb: one object of category `other`), or procedural:CATEGORY:SEED.
+#include <string>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/world/scene.h"
+
+namespace objscan::io {
+
+struct SceneLoadOptions {
+  // Extra folders searched for model:// URIs after the world's own folder (then $OBJSCAN_MODEL_PATH
+  // and $GAZEBO_MODEL_PATH, colon-separated).
+  std::string model_path;
+  // Load what can be loaded and list the rest in Scene::missing_meshes() instead of failing.
+  bool allow_missing = false;
+  // SUNCG class -> objscan category table (relative paths are resolved against the project's config/).
+  std::string suncg_category_table = "suncg_categories.csv";
+
+  template <class V>
+  void Visit(V& v) {
+    v("model_path", model_path);
+    v("allow_missing", allow_missing);
+    v("suncg_category_table", suncg_category_table);
+  }
+  void Validate() const {}
+};
+
+// Throws InputError with one line naming the file and element on bad input.
+world::Scene LoadScene(const std::string& spec, const SceneLoadOptions& options);
+
+}  // namespace objscan::io
