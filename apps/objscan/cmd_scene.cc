@@ -1,23 +1,113 @@
-// `objscan scene`: Load a scene, print its objects, draw a top view or export its mesh
-// The command line is fixed by DESIGN.md; the work arrives with issue #2.
+// `objscan scene`: load a scene, print its objects, draw a top view or export its mesh.
 #include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
 
+#include "cli_util.h"
 #include "commands.h"
+#include "objscan/io/ply.h"
+#include "objscan/io/scene_spec.h"
+#include "objscan/io/topview.h"
 
 namespace objscan::app {
+namespace {
+
+struct SceneArgs {
+  std::string scene;
+  bool info = false;
+  std::string topview;
+  std::string export_ply;
+  bool allow_missing = false;
+  std::string model_path;
+};
+
+nlohmann::json Vec(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+nlohmann::json SceneInfo(const world::Scene& scene) {
+  nlohmann::json objects = nlohmann::json::array();
+  for (const auto& o : scene.objects()) {
+    const geometry::Aabb3 box = scene.ObjectBounds(o);
+    objects.push_back({{"id", o.instance_id},
+                       {"name", o.name},
+                       {"category", world::CategoryName(o.category)},
+                       {"model", o.model_name},
+                       {"aabb_min", Vec(box.min_m)},
+                       {"aabb_max", Vec(box.max_m)},
+                       {"triangles", o.mesh.NumTriangles()}});
+  }
+  const geometry::Aabb3 bounds = scene.Bounds();
+  const geometry::Aabb3 furniture = scene.FurnitureBounds();
+  nlohmann::json info;
+  info["scene"] = scene.name();
+  info["objects"] = objects;
+  info["bounds"] = {{"min", Vec(bounds.min_m)}, {"max", Vec(bounds.max_m)}};
+  if (!furniture.Empty()) info["furniture_bounds"] = {{"min", Vec(furniture.min_m)}, {"max", Vec(furniture.max_m)}};
+  info["num_furniture"] = scene.NumFurniture();
+  info["num_triangles"] = scene.NumTriangles();
+  info["missing_meshes"] = scene.missing_meshes();
+  return info;
+}
+
+// The scene mesh in the world frame; vertices are not shared between objects, so each carries its
+// object's instance and category ids (and the category colour for viewers).
+io::PlyData SceneMesh(const world::Scene& scene) {
+  io::PlyData ply;
+  std::vector<std::int32_t> instance_ids, category_ids;
+  for (const auto& o : scene.objects()) {
+    const int offset = static_cast<int>(ply.points.size());
+    const auto color = world::CategoryColor(o.category);
+    for (const auto& v : o.mesh.vertices) {
+      ply.points.push_back((o.T_world_object * v.cast<double>()).cast<float>());
+      ply.colors.push_back({color[0], color[1], color[2]});
+      instance_ids.push_back(o.instance_id);
+      category_ids.push_back(world::CategoryId(o.category));
+    }
+    for (const auto& t : o.mesh.triangles) ply.triangles.push_back(t + Eigen::Vector3i::Constant(offset));
+  }
+  ply.int_properties.emplace_back("instance_id", std::move(instance_ids));
+  ply.int_properties.emplace_back("category_id", std::move(category_ids));
+  return ply;
+}
+
+int RunScene(const SceneArgs& args) {
+  io::SceneLoadOptions options;
+  options.allow_missing = args.allow_missing;
+  options.model_path = args.model_path;
+  const world::Scene scene = io::LoadScene(args.scene, options);
+  if (!args.topview.empty()) io::RenderTopView(scene, io::TopViewOptions()).canvas.SavePng(args.topview);
+  if (!args.export_ply.empty()) io::WritePly(args.export_ply, SceneMesh(scene));
+  if (args.info) {
+    std::printf("%s\n", SceneInfo(scene).dump(2).c_str());
+  } else if (args.topview.empty() && args.export_ply.empty()) {
+    // Nothing asked for: a one-line summary.
+    std::printf("%s: %zu objects (%zu furniture), %zu triangles, %zu missing meshes\n", scene.name().c_str(),
+                scene.objects().size(), scene.NumFurniture(), scene.NumTriangles(), scene.missing_meshes().size());
+  }
+  if (!scene.missing_meshes().empty()) {
+    std::fprintf(stderr, "objscan scene: warning: %zu meshes could not be loaded (listed in --info)\n",
+                 scene.missing_meshes().size());
+  }
+  return 0;
+}
+
+}  // namespace
 
 void AddSceneCommand(CLI::App& root, RunFn* run) {
+  auto args = std::make_shared<SceneArgs>();
   auto* cmd = root.add_subcommand("scene", "Load a scene, print its objects, draw a top view or export its mesh");
-  cmd->add_option("--scene", "scene SPEC: .world, .yaml/.json scene file, mesh, or procedural:CATEGORY:SEED")->required();
-  cmd->add_flag("--info", "print objects and bounds as JSON");
-  cmd->add_option("--topview", "write a top view PNG");
-  cmd->add_option("--export", "write the scene mesh as PLY");
-  cmd->callback([run] {
-    *run = [] {
-      std::fprintf(stderr, "objscan scene: not available in this build yet (issue #2)\n");
-      return 3;
-    };
-  });
+  cmd->add_option("--scene", args->scene,
+                  "scene SPEC: .world, .yaml/.json scene file, mesh, or procedural:CATEGORY:SEED")
+      ->required();
+  cmd->add_flag("--info", args->info, "print objects and bounds as JSON on stdout");
+  cmd->add_option("--topview", args->topview, "write a top view PNG (objects coloured by category, legend)");
+  cmd->add_option("--export", args->export_ply,
+                  "write the scene mesh as PLY with per-vertex instance_id and category_id");
+  cmd->add_flag("--allow-missing", args->allow_missing,
+                "load what can be loaded and list unresolved meshes in missing_meshes instead of failing");
+  cmd->add_option("--model-path", args->model_path,
+                  "colon-separated folders searched for model:// URIs after the world's folder "
+                  "(then $OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH)");
+  cmd->callback([run, args] { *run = [args] { return RunScene(*args); }; });
 }
 
 }  // namespace objscan::app

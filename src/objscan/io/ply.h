@@ -1,6 +1,7 @@
 #pragma once
 // PLY point clouds and meshes (binary little-endian by default, ASCII on request).
 // Writes are atomic: a failed write leaves no file behind.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>

@@ -6,6 +6,7 @@
 #include "objscan/common/config.h"
 #include "objscan/common/rng.h"
 #include "objscan/sim/depth_frame.h"
+#include "objscan/sim/raycaster.h"
 #include "objscan/world/scene.h"
 
 namespace objscan::sim {
@@ -66,6 +67,8 @@ class DepthCamera {
   DepthFrame Render(const geometry::Pose3& T_world_camera, Rng* rng) const;
 
   const SensorOptions& options() const { return options_; }
+  // The ray caster holding the committed scene (line-of-sight and pose checks reuse it).
+  const Raycaster& raycaster() const;
 
  private:
   SensorOptions options_;

@@ -1,0 +1,215 @@
+#include "objscan/eval/metrics.h"
+
+#include <algorithm>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include "objscan/common/config.h"
+#include "objscan/common/error.h"
+
+namespace objscan::eval {
+
+int MajorityInstance(const std::vector<int>& point_instances) {
+  if (point_instances.empty()) return -1;
+  std::vector<int> sorted = point_instances;
+  std::sort(sorted.begin(), sorted.end());
+  int best = sorted.front();
+  std::size_t best_count = 0;
+  for (std::size_t i = 0; i < sorted.size();) {
+    std::size_t j = i;
+    while (j < sorted.size() && sorted[j] == sorted[i]) ++j;
+    if (j - i > best_count) {  // strict: ties keep the smaller id, seen first
+      best_count = j - i;
+      best = sorted[i];
+    }
+    i = j;
+  }
+  return best;
+}
+
+RecognitionResult MatchRecognitions(const std::vector<GroundTruthInstance>& ground_truth,
+                                    const std::vector<OutputObject>& outputs,
+                                    const std::vector<world::Category>& database_categories) {
+  std::array<bool, world::kNumCategories> known{};
+  for (world::Category c : database_categories) known[static_cast<std::size_t>(world::CategoryId(c))] = true;
+
+  std::unordered_map<int, const GroundTruthInstance*> instance_by_id;
+  RecognitionResult result;
+  for (const GroundTruthInstance& g : ground_truth) {
+    if (!instance_by_id.emplace(g.instance_id, &g).second) {
+      throw InputError("MatchRecognitions: duplicate ground-truth instance id " + std::to_string(g.instance_id));
+    }
+  }
+  auto in_set = [&](const GroundTruthInstance& g) {
+    return !world::IsStructural(g.category) && known[static_cast<std::size_t>(world::CategoryId(g.category))];
+  };
+  for (const GroundTruthInstance& g : ground_truth) {
+    if (!in_set(g)) continue;
+    ++result.all.ground_truth;
+    if (g.on_floor) ++result.floor.ground_truth;
+    ++result.per_category[static_cast<std::size_t>(world::CategoryId(g.category))].ground_truth;
+  }
+
+  std::unordered_set<int> matched;
+  result.output_is_true_positive.assign(outputs.size(), false);
+  for (std::size_t o = 0; o < outputs.size(); ++o) {
+    const OutputObject& out = outputs[o];
+    ++result.all.outputs;
+    ++result.per_category[static_cast<std::size_t>(world::CategoryId(out.category))].outputs;
+    auto it = instance_by_id.find(out.majority_instance);
+    const GroundTruthInstance* g = it == instance_by_id.end() ? nullptr : it->second;
+    const bool on_floor = g != nullptr && g->on_floor;
+    if (on_floor) ++result.floor.outputs;
+    if (g == nullptr || !in_set(*g) || g->category != out.category || matched.count(g->instance_id)) continue;
+    matched.insert(g->instance_id);
+    result.output_is_true_positive[o] = true;
+    ++result.all.true_positives;
+    if (on_floor) ++result.floor.true_positives;
+    ++result.per_category[static_cast<std::size_t>(world::CategoryId(g->category))].true_positives;
+  }
+  result.matched_instances.assign(matched.begin(), matched.end());
+  std::sort(result.matched_instances.begin(), result.matched_instances.end());
+  return result;
+}
+
+double RandIndex(const std::vector<int>& segmentation_a, const std::vector<int>& segmentation_b) {
+  if (segmentation_a.size() != segmentation_b.size()) {
+    throw InputError("RandIndex: segmentations have " + std::to_string(segmentation_a.size()) + " and " +
+                     std::to_string(segmentation_b.size()) + " points");
+  }
+  const std::size_t n = segmentation_a.size();
+  if (n < 2) return 1.0;
+  // Pairs together in both = sum over contingency cells of C(n_ij, 2); together in A = sum over rows
+  // of C(a_i, 2); together in B likewise. Agreements = all pairs - (together in A only) - (in B only).
+  auto pairs = [](double k) { return k * (k - 1.0) / 2.0; };
+  auto sum_pairs_of_runs = [&](std::vector<std::pair<int, int>>& keys) {
+    std::sort(keys.begin(), keys.end());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < keys.size();) {
+      std::size_t j = i;
+      while (j < keys.size() && keys[j] == keys[i]) ++j;
+      sum += pairs(static_cast<double>(j - i));
+      i = j;
+    }
+    return sum;
+  };
+  std::vector<std::pair<int, int>> cells(n), rows(n), cols(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    cells[i] = {segmentation_a[i], segmentation_b[i]};
+    rows[i] = {segmentation_a[i], 0};
+    cols[i] = {segmentation_b[i], 0};
+  }
+  const double both = sum_pairs_of_runs(cells);
+  const double in_a = sum_pairs_of_runs(rows);
+  const double in_b = sum_pairs_of_runs(cols);
+  const double total = pairs(static_cast<double>(n));
+  return (total - (in_a - both) - (in_b - both)) / total;
+}
+
+double NonStructuralRandIndex(const std::vector<int>& point_segment, const std::vector<int>& point_instance,
+                              const std::vector<GroundTruthInstance>& ground_truth) {
+  if (point_segment.size() != point_instance.size()) {
+    throw InputError("NonStructuralRandIndex: " + std::to_string(point_segment.size()) + " segment ids for " +
+                     std::to_string(point_instance.size()) + " points");
+  }
+  std::unordered_set<int> object_instances;
+  for (const GroundTruthInstance& g : ground_truth) {
+    if (!world::IsStructural(g.category)) object_instances.insert(g.instance_id);
+  }
+  std::vector<int> kept_segment;
+  std::vector<int> kept_instance;
+  for (std::size_t i = 0; i < point_segment.size(); ++i) {
+    if (!object_instances.count(point_instance[i])) continue;
+    kept_segment.push_back(point_segment[i]);
+    kept_instance.push_back(point_instance[i]);
+  }
+  return RandIndex(kept_segment, kept_instance);
+}
+
+void CoverageOptions::Validate() const {
+  config::RequirePositive("sigma", sigma);
+  config::RequirePositive("theta_t_rad", theta_t_rad);
+  config::RequireNonNegative("min_range_m", min_range_m);
+  config::RequirePositive("max_range_m", max_range_m);
+  config::Require(min_range_m < max_range_m, "min_range_m", "must be below max_range_m");
+}
+
+namespace {
+
+bool InRange(double distance_m, const CoverageOptions& options) {
+  return distance_m >= options.min_range_m && distance_m <= options.max_range_m;
+}
+
+}  // namespace
+
+double ViewQuality(const SurfaceVoxel& voxel, const Eigen::Vector3d& camera_position_world,
+                   const CoverageOptions& options) {
+  const Eigen::Vector3d to_camera = camera_position_world - voxel.center_world;
+  const double d = to_camera.norm();
+  if (!InRange(d, options) || d <= 0.0) return 0.0;
+  const double n_norm = voxel.normal_world.norm();
+  // Angle between the normal line and the line of sight, in [0, pi/2]: normals of voxels need not be
+  // oriented, and a voxel seen at all is seen from its front.
+  const double cos_theta = n_norm > 0.0 ? std::min(1.0, std::abs(voxel.normal_world.dot(to_camera)) / (n_norm * d)) : 1.0;
+  const double theta = std::acos(cos_theta);
+  const double s2 = options.sigma * options.sigma;
+  const double d_t = options.max_range_m;
+  return std::exp(-theta * theta / (s2 * options.theta_t_rad)) *
+         std::exp(-(d - options.min_range_m) * (d - options.min_range_m) / (s2 * d_t));
+}
+
+CoverageAccumulator::CoverageAccumulator(std::vector<SurfaceVoxel> voxels, CoverageOptions options)
+    : voxels_(std::move(voxels)), options_(options), best_quality_(voxels_.size(), -1.0) {
+  options_.Validate();
+}
+
+void CoverageAccumulator::AddView(const Eigen::Vector3d& camera_position_world, const std::vector<int>& seen_voxels) {
+  for (int v : seen_voxels) {
+    if (v < 0 || static_cast<std::size_t>(v) >= voxels_.size()) {
+      throw InputError("CoverageAccumulator: voxel index " + std::to_string(v) + " out of range");
+    }
+    const SurfaceVoxel& voxel = voxels_[static_cast<std::size_t>(v)];
+    const double d = (camera_position_world - voxel.center_world).norm();
+    if (!InRange(d, options_)) continue;
+    best_quality_[static_cast<std::size_t>(v)] =
+        std::max(best_quality_[static_cast<std::size_t>(v)], ViewQuality(voxel, camera_position_world, options_));
+  }
+}
+
+CoverageResult CoverageAccumulator::Result(const std::vector<int>& detected_instances) const {
+  const std::unordered_set<int> detected(detected_instances.begin(), detected_instances.end());
+  CoverageResult r;
+  r.num_voxels = static_cast<int>(voxels_.size());
+  double quality_sum = 0.0;
+  for (std::size_t v = 0; v < voxels_.size(); ++v) {
+    if (best_quality_[v] < 0.0) continue;
+    ++r.num_visible;
+    if (!detected.count(voxels_[v].instance)) continue;
+    ++r.num_covered;
+    quality_sum += best_quality_[v];
+  }
+  if (r.num_voxels > 0) {
+    r.rate = static_cast<double>(r.num_covered) / r.num_voxels;
+    r.quality = quality_sum / r.num_voxels;
+  }
+  return r;
+}
+
+CoverageResult ComputeCoverage(const std::vector<SurfaceVoxel>& voxels,
+                               const std::vector<Eigen::Vector3d>& camera_positions_world,
+                               const std::vector<std::vector<int>>& seen_voxels_per_camera,
+                               const std::vector<int>& detected_instances, const CoverageOptions& options) {
+  if (camera_positions_world.size() != seen_voxels_per_camera.size()) {
+    throw InputError("ComputeCoverage: " + std::to_string(camera_positions_world.size()) + " cameras but " +
+                     std::to_string(seen_voxels_per_camera.size()) + " seen-voxel lists");
+  }
+  CoverageAccumulator accumulator(voxels, options);
+  for (std::size_t c = 0; c < camera_positions_world.size(); ++c) {
+    accumulator.AddView(camera_positions_world[c], seen_voxels_per_camera[c]);
+  }
+  return accumulator.Result(detected_instances);
+}
+
+}  // namespace objscan::eval

@@ -1,0 +1,31 @@
+#pragma once
+// Atomic file writes: data goes to a temporary file beside the target, which is renamed over the
+// target only once it is complete, so a failed write never leaves a half-written file behind.
+#include <string>
+
+namespace objscan::io {
+
+class AtomicFile {
+ public:
+  // Picks a temporary name beside `path` (nothing is created yet).
+  explicit AtomicFile(std::string path);
+  // Removes the temporary file unless Commit() succeeded.
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::string& temp_path() const { return temp_path_; }
+  const std::string& path() const { return path_; }
+  // Renames the temporary file to the target; throws InputError naming the target on failure.
+  void Commit();
+
+ private:
+  std::string path_;
+  std::string temp_path_;
+  bool committed_ = false;
+};
+
+// Writes `bytes` to `path` atomically; throws InputError naming the path on failure.
+void WriteFileAtomically(const std::string& path, const std::string& bytes);
+
+}  // namespace objscan::io

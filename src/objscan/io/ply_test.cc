@@ -1,0 +1,143 @@
+#include "objscan/io/ply.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "objscan/common/error.h"
+#include "objscan/io/test_util.h"
+
+namespace objscan::io {
+namespace {
+
+using testing::ExpectInputError;
+using testing::TempDir;
+
+PlyData MakeSample() {
+  PlyData d;
+  for (int i = 0; i < 5; ++i) {
+    d.points.emplace_back(0.1f * i, -2.5f + i, 1e-3f * i * i);
+    d.normals.emplace_back(0, i % 2, 1 - i % 2);
+    d.colors.push_back({static_cast<std::uint8_t>(i), 200, static_cast<std::uint8_t>(255 - i)});
+  }
+  d.int_properties.push_back({"object_id", {1, 2, -3, 4, 100000}});
+  d.int_properties.push_back({"category_id", {0, 21, 23, 5, 7}});
+  d.triangles = {{0, 1, 2}, {2, 3, 4}};
+  return d;
+}
+
+void ExpectSame(const PlyData& a, const PlyData& b) {
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    EXPECT_EQ(a.points[i], b.points[i]) << i;  // %.9g / raw floats both round-trip exactly
+    EXPECT_EQ(a.normals[i], b.normals[i]) << i;
+    EXPECT_EQ(a.colors[i], b.colors[i]) << i;
+  }
+  ASSERT_EQ(a.int_properties.size(), b.int_properties.size());
+  for (std::size_t k = 0; k < a.int_properties.size(); ++k) {
+    EXPECT_EQ(a.int_properties[k], b.int_properties[k]);
+  }
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  for (std::size_t i = 0; i < a.triangles.size(); ++i) EXPECT_EQ(a.triangles[i], b.triangles[i]);
+}
+
+TEST(PlyTest, BinaryRoundTrip) {
+  TempDir dir;
+  const PlyData d = MakeSample();
+  WritePly(dir.File("b.ply"), d, /*binary=*/true);
+  ExpectSame(d, ReadPly(dir.File("b.ply")));
+}
+
+TEST(PlyTest, AsciiRoundTrip) {
+  TempDir dir;
+  const PlyData d = MakeSample();
+  WritePly(dir.File("a.ply"), d, /*binary=*/false);
+  ExpectSame(d, ReadPly(dir.File("a.ply")));
+}
+
+TEST(PlyTest, PointCloudWithoutExtras) {
+  TempDir dir;
+  PlyData d;
+  d.points = {{1, 2, 3}, {4, 5, 6}};
+  WritePly(dir.File("p.ply"), d);
+  const PlyData back = ReadPly(dir.File("p.ply"));
+  ASSERT_EQ(back.points.size(), 2u);
+  EXPECT_EQ(back.points[1], Eigen::Vector3f(4, 5, 6));
+  EXPECT_TRUE(back.normals.empty());
+  EXPECT_TRUE(back.colors.empty());
+  EXPECT_TRUE(back.int_properties.empty());
+  EXPECT_TRUE(back.triangles.empty());
+}
+
+TEST(PlyTest, ReadsForeignLayoutsQuadsAndBigEndian) {
+  TempDir dir;
+  // ASCII with double coordinates, an extra float property, a quad and an unrelated element.
+  testing::WriteText(dir.File("q.ply"),
+                     "ply\nformat ascii 1.0\ncomment hi\nelement vertex 4\nproperty double x\nproperty double y\n"
+                     "property double z\nproperty float quality\nelement face 1\nproperty list uchar uint vertex_index\n"
+                     "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+                     "0 0 0 0.5\n1 0 0 0.5\n1 1 0 0.5\n0 1 0 0.5\n4 0 1 2 3\n0 1\n");
+  const PlyData q = ReadPly(dir.File("q.ply"));
+  ASSERT_EQ(q.points.size(), 4u);
+  ASSERT_EQ(q.triangles.size(), 2u);  // fan split of the quad
+  EXPECT_EQ(q.triangles[1], Eigen::Vector3i(0, 2, 3));
+  EXPECT_TRUE(q.int_properties.empty());  // float "quality" is not an int property
+
+  // Big-endian: one vertex (1.5, -2, 0.25) with a short label 258.
+  std::string be = "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                   "property float z\nproperty short label\nend_header\n";
+  for (float f : {1.5f, -2.0f, 0.25f}) {
+    unsigned char b[4];
+    std::memcpy(b, &f, 4);
+    for (int k = 3; k >= 0; --k) be += static_cast<char>(b[k]);
+  }
+  be += static_cast<char>(1);
+  be += static_cast<char>(2);
+  testing::WriteText(dir.File("be.ply"), be);
+  const PlyData b = ReadPly(dir.File("be.ply"));
+  ASSERT_EQ(b.points.size(), 1u);
+  EXPECT_EQ(b.points[0], Eigen::Vector3f(1.5f, -2.0f, 0.25f));
+  ASSERT_EQ(b.int_properties.size(), 1u);
+  EXPECT_EQ(b.int_properties[0].first, "label");
+  EXPECT_EQ(b.int_properties[0].second[0], 258);
+}
+
+TEST(PlyTest, CorruptFilesNameThePath) {
+  TempDir dir;
+  ExpectInputError([&] { ReadPly(dir.File("none.ply")); }, "none.ply");
+  testing::WriteText(dir.File("magic.ply"), "plx\nformat ascii 1.0\nend_header\n");
+  ExpectInputError([&] { ReadPly(dir.File("magic.ply")); }, "magic.ply");
+  testing::WriteText(dir.File("noend.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n");
+  ExpectInputError([&] { ReadPly(dir.File("noend.ply")); }, "noend.ply");
+  testing::WriteText(dir.File("short.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "end_header\n0 0 0\n1 1 1\n");
+  ExpectInputError([&] { ReadPly(dir.File("short.ply")); }, "short.ply");
+  testing::WriteText(dir.File("text.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                     "end_header\n0 zero 0\n");
+  ExpectInputError([&] { ReadPly(dir.File("text.ply")); }, "text.ply");
+  testing::WriteText(dir.File("index.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n3 0 0 7\n");
+  ExpectInputError([&] { ReadPly(dir.File("index.ply")); }, "index.ply");
+  // Binary file cut short.
+  WritePly(dir.File("full.ply"), MakeSample());
+  std::filesystem::copy_file(dir.File("full.ply"), dir.File("cut.ply"));
+  std::filesystem::resize_file(dir.File("cut.ply"), std::filesystem::file_size(dir.File("full.ply")) - 5);
+  ExpectInputError([&] { ReadPly(dir.File("cut.ply")); }, "cut.ply");
+}
+
+TEST(PlyTest, InconsistentDataIsRejectedAndLeavesNoFile) {
+  TempDir dir;
+  PlyData d = MakeSample();
+  d.int_properties[0].second.pop_back();
+  ExpectInputError([&] { WritePly(dir.File("x.ply"), d); }, "object_id");
+  d = MakeSample();
+  d.triangles.emplace_back(0, 1, 5);
+  ExpectInputError([&] { WritePly(dir.File("x.ply"), d); }, "x.ply");
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+}  // namespace
+}  // namespace objscan::io

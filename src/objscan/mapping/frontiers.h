@@ -1,0 +1,44 @@
+#pragma once
+// Floor frontiers: observed floor cells next to unexplored cells, clustered into navigation goals.
+// The paper sends the robot to them when no object is in view and stops when none are left.
+#include <Eigen/Core>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/mapping/occupancy_map.h"
+#include "objscan/mapping/planes.h"
+#include "objscan/mapping/surface_map.h"
+
+namespace objscan::mapping {
+
+struct FrontierOptions {
+  double cell_size_m = 0.05;
+  int min_floor_elements_per_cell = 3;  // floor-tagged surface elements that make a cell observed
+  int min_cluster_cells = 4;            // smaller clusters are noise, not goals
+  // Cells behind a detected wall (by more than this) are outside the room and never frontiers.
+  double wall_margin_m = 0.1;
+
+  template <class V>
+  void Visit(V& v) {
+    v("cell_size_m", cell_size_m);
+    v("min_floor_elements_per_cell", min_floor_elements_per_cell);
+    v("min_cluster_cells", min_cluster_cells);
+    v("wall_margin_m", wall_margin_m);
+  }
+  void Validate() const;
+};
+
+struct FrontierGoal {
+  Eigen::Vector2d centroid_m = Eigen::Vector2d::Zero();  // world XY
+  int size_cells = 0;
+  std::vector<Eigen::Vector2d> cells_m;  // centres of its cells
+};
+
+// A floor cell is observed when it holds enough floor-tagged elements; a neighbour (4-connected) is
+// unexplored when it is not observed floor and the occupancy just above the floor there is unknown
+// (occupied means an obstacle such as a wall or furniture; free means rays passed over it).
+// Frontier cells are clustered 8-connected; goals are sorted by size, largest first.
+std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const OccupancyMap& occupancy,
+                                             const StructureResult& structure, const FrontierOptions& options);
+
+}  // namespace objscan::mapping

@@ -1,0 +1,183 @@
+#include "objscan/mapping/occupancy_map.h"
+
+#include <octomap/OcTree.h>
+#include <octomap/octomap.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace objscan::mapping {
+
+void OccupancyMapOptions::Validate() const {
+  config::RequireInRange("resolution_m", resolution_m, 0.005, 1.0);
+  config::RequireInRange("pixel_stride", pixel_stride, 1, 64);
+  config::RequirePositive("max_range_m", max_range_m);
+  config::RequireInRange("prob_hit", prob_hit, 0.5, 1.0);
+  config::RequireInRange("prob_miss", prob_miss, 0.0, 0.5);
+  config::RequireInRange("clamping_min", clamping_min, 0.0, 0.5);
+  config::RequireInRange("clamping_max", clamping_max, 0.5, 1.0);
+  config::RequireInRange("occupied_threshold", occupied_threshold, 0.0, 1.0);
+  config::RequireNonNegative("view_clearance_m", view_clearance_m);
+}
+
+void NavigationGridOptions::Validate() const {
+  config::RequireNonNegative("floor_clearance_m", floor_clearance_m);
+  config::Require(robot_height_m > floor_clearance_m, "robot_height_m", "must exceed floor_clearance_m");
+}
+
+void NavigationGrid::CellOf(const Eigen::Vector2d& p, int* ix, int* iy) const {
+  *ix = static_cast<int>(std::floor((p.x() - origin_m.x()) / resolution_m));
+  *iy = static_cast<int>(std::floor((p.y() - origin_m.y()) / resolution_m));
+}
+
+Eigen::Vector2d NavigationGrid::CenterOf(int ix, int iy) const {
+  return origin_m + resolution_m * Eigen::Vector2d(ix + 0.5, iy + 0.5);
+}
+
+bool NavigationGrid::IsFree(const Eigen::Vector2d& p) const {
+  int ix, iy;
+  CellOf(p, &ix, &iy);
+  return InBounds(ix, iy) && At(ix, iy) == kFree;
+}
+
+struct OccupancyMap::Impl {
+  explicit Impl(double resolution) : tree(resolution) {}
+  octomap::OcTree tree;
+};
+
+OccupancyMap::OccupancyMap(const OccupancyMapOptions& options) : options_(options) {
+  options_.Validate();
+  impl_ = std::make_unique<Impl>(options_.resolution_m);
+  octomap::OcTree& tree = impl_->tree;
+  tree.setProbHit(options_.prob_hit);
+  tree.setProbMiss(options_.prob_miss);
+  tree.setClampingThresMin(options_.clamping_min);
+  tree.setClampingThresMax(options_.clamping_max);
+  tree.setOccupancyThres(options_.occupied_threshold);
+}
+
+OccupancyMap::~OccupancyMap() = default;
+
+void OccupancyMap::Integrate(const sim::DepthFrame& frame) {
+  const int stride = options_.pixel_stride;
+  const Eigen::Matrix3f R = frame.T_world_camera.rotation().cast<float>();
+  const Eigen::Vector3f t = frame.T_world_camera.translation().cast<float>();
+  const sim::CameraIntrinsics& in = frame.intrinsics;
+  std::vector<Eigen::Vector3f> end_points;
+  end_points.reserve(static_cast<std::size_t>(frame.width() / stride + 1) * (frame.height() / stride + 1));
+  // Offset the sample grid by half a stride so samples sit in the middle of their blocks.
+  for (int v = stride / 2; v < frame.height(); v += stride) {
+    for (int u = stride / 2; u < frame.width(); u += stride) {
+      const float z = frame.Depth(u, v);
+      if (z <= 0.f) continue;
+      const Eigen::Vector3f p_camera(static_cast<float>((u - in.cx_px) / in.fx_px) * z,
+                                     static_cast<float>((v - in.cy_px) / in.fy_px) * z, z);
+      end_points.push_back(R * p_camera + t);
+    }
+  }
+  InsertRays(frame.T_world_camera.translation(), end_points);
+}
+
+void OccupancyMap::InsertRays(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& end_points) {
+  octomap::Pointcloud cloud;
+  cloud.reserve(end_points.size());
+  for (const Eigen::Vector3f& p : end_points) cloud.push_back(p.x(), p.y(), p.z());
+  // discretize = true: rays to end points in the same voxel are cast once (much faster, same map).
+  impl_->tree.insertPointCloud(cloud, octomap::point3d(origin.x(), origin.y(), origin.z()), options_.max_range_m,
+                               /*lazy_eval=*/false, /*discretize=*/true);
+}
+
+Occupancy OccupancyMap::Query(const Eigen::Vector3d& p) const {
+  const octomap::OcTreeNode* node = impl_->tree.search(p.x(), p.y(), p.z());
+  if (node == nullptr) return Occupancy::kUnknown;
+  return impl_->tree.isNodeOccupied(node) ? Occupancy::kOccupied : Occupancy::kFree;
+}
+
+bool OccupancyMap::IsViewValid(const Eigen::Vector3d& c) const {
+  if (Query(c) != Occupancy::kFree) return false;
+  const double r = options_.view_clearance_m;
+  if (r <= 0.0) return true;
+  static const double kDirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const auto& d : kDirs) {
+    if (Query(c + r * Eigen::Vector3d(d[0], d[1], d[2])) != Occupancy::kFree) return false;
+  }
+  return true;
+}
+
+void OccupancyMap::ForEachOccupied(
+    const std::function<void(const Eigen::Vector3d& center, double size_m)>& fn) const {
+  const octomap::OcTree& tree = impl_->tree;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (!tree.isNodeOccupied(*it)) continue;
+    const octomap::point3d c = it.getCoordinate();
+    fn(Eigen::Vector3d(c.x(), c.y(), c.z()), it.getSize());
+  }
+}
+
+std::size_t OccupancyMap::NumOccupied() const {
+  std::size_t n = 0;
+  const double res = options_.resolution_m;
+  ForEachOccupied([&n, res](const Eigen::Vector3d&, double size_m) {
+    // Counted in finest voxels: a pruned leaf stands for (size / res)^3 of them.
+    const double k = size_m / res;
+    n += static_cast<std::size_t>(std::lround(k * k * k));
+  });
+  return n;
+}
+
+geometry::Aabb3 OccupancyMap::KnownBounds() const {
+  geometry::Aabb3 box;
+  const octomap::OcTree& tree = impl_->tree;
+  if (tree.size() == 0) return box;
+  double x0, y0, z0, x1, y1, z1;
+  tree.getMetricMin(x0, y0, z0);
+  tree.getMetricMax(x1, y1, z1);
+  box.Extend(Eigen::Vector3d(x0, y0, z0));
+  box.Extend(Eigen::Vector3d(x1, y1, z1));
+  return box;
+}
+
+NavigationGrid OccupancyMap::ToNavigationGrid(const NavigationGridOptions& options,
+                                              const geometry::Aabb3& bounds) const {
+  options.Validate();
+  NavigationGrid grid;
+  const double res = options_.resolution_m;
+  grid.resolution_m = res;
+  const geometry::Aabb3 box = bounds.Empty() ? KnownBounds() : bounds;
+  if (box.Empty()) return grid;
+  grid.origin_m = Eigen::Vector2d(std::floor(box.min_m.x() / res) * res, std::floor(box.min_m.y() / res) * res);
+  grid.width = std::max(1, static_cast<int>(std::ceil((box.max_m.x() - grid.origin_m.x()) / res)));
+  grid.height = std::max(1, static_cast<int>(std::ceil((box.max_m.y() - grid.origin_m.y()) / res)));
+  grid.cells.assign(static_cast<std::size_t>(grid.width) * grid.height, NavigationGrid::kUnknown);
+
+  const octomap::OcTree& tree = impl_->tree;
+  const double z_lo = options.floor_height_m + options.floor_clearance_m;
+  const double z_hi = options.floor_height_m + options.robot_height_m;
+  const octomap::point3d bbx_min(grid.origin_m.x(), grid.origin_m.y(), z_lo);
+  const octomap::point3d bbx_max(grid.origin_m.x() + grid.width * res, grid.origin_m.y() + grid.height * res, z_hi);
+  std::vector<std::uint8_t> known(grid.cells.size(), 0), occupied(grid.cells.size(), 0);
+  for (auto it = tree.begin_leafs_bbx(bbx_min, bbx_max), end = tree.end_leafs_bbx(); it != end; ++it) {
+    const octomap::point3d c = it.getCoordinate();
+    const double half = 0.5 * it.getSize();
+    // Leaves whose centre lies outside the height band only graze it.
+    if (c.z() < z_lo - 0.5 * res || c.z() > z_hi + 0.5 * res) continue;
+    const bool occ = tree.isNodeOccupied(*it);
+    const int ix0 = std::max(0, static_cast<int>(std::floor((c.x() - half - grid.origin_m.x()) / res + 1e-6)));
+    const int iy0 = std::max(0, static_cast<int>(std::floor((c.y() - half - grid.origin_m.y()) / res + 1e-6)));
+    const int ix1 = std::min(grid.width - 1, static_cast<int>(std::ceil((c.x() + half - grid.origin_m.x()) / res - 1e-6)) - 1);
+    const int iy1 = std::min(grid.height - 1, static_cast<int>(std::ceil((c.y() + half - grid.origin_m.y()) / res - 1e-6)) - 1);
+    for (int iy = iy0; iy <= iy1; ++iy) {
+      for (int ix = ix0; ix <= ix1; ++ix) {
+        const std::size_t k = static_cast<std::size_t>(iy) * grid.width + ix;
+        known[k] = 1;
+        if (occ) occupied[k] = 1;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < grid.cells.size(); ++k) {
+    grid.cells[k] = occupied[k] ? NavigationGrid::kObstacle : (known[k] ? NavigationGrid::kFree : NavigationGrid::kUnknown);
+  }
+  return grid;
+}
+
+}  // namespace objscan::mapping

@@ -1,0 +1,218 @@
+#include "objscan/mapping/planes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace objscan::mapping {
+
+void StructureOptions::Validate() const {
+  config::RequirePositive("floor_search_height_m", floor_search_height_m);
+  config::RequireInRange("floor_max_tilt_deg", floor_max_tilt_deg, 0.0, 90.0);
+  config::RequireNonNegative("floor_min_area_m2", floor_min_area_m2);
+  config::RequirePositive("plane_tolerance_m", plane_tolerance_m);
+  config::RequireInRange("wall_max_tilt_deg", wall_max_tilt_deg, 0.0, 90.0);
+  config::RequireInRange("wall_angle_bin_deg", wall_angle_bin_deg, 0.1, 45.0);
+  config::RequirePositive("wall_offset_bin_m", wall_offset_bin_m);
+  config::RequireNonNegative("wall_min_area_m2", wall_min_area_m2);
+  config::RequireNonNegative("wall_min_height_m", wall_min_height_m);
+  config::RequireInRange("wall_max_behind_fraction", wall_max_behind_fraction, 0.0, 1.0);
+  config::RequireInRange("wall_max_count", wall_max_count, 0, 1000);
+}
+
+bool StructureResult::InsideWalls(const Eigen::Vector3d& p, double margin_m) const {
+  for (const WallPlane& w : walls) {
+    const double s = -w.normal.y() * p.x() + w.normal.x() * p.y();
+    if (s < w.span_min_m - margin_m || s > w.span_max_m + margin_m) continue;
+    if (w.SignedDistance(p) < -margin_m) return false;
+  }
+  return true;
+}
+
+StructureDetector::StructureDetector(const StructureOptions& options) : options_(options) { options_.Validate(); }
+
+namespace {
+constexpr double kTagMaxAngleDeg = 35.0;  // element normal vs plane normal when tagging
+
+double AngleDiff(double a, double b) {
+  double d = std::fmod(std::fabs(a - b), 2.0 * M_PI);
+  return d > M_PI ? 2.0 * M_PI - d : d;
+}
+}  // namespace
+
+StructureResult StructureDetector::Update(SurfaceMap* map) const {
+  StructureResult result;
+  const std::size_t n = map->size();
+  const double voxel_area = map->voxel_size_m() * map->voxel_size_m();
+  const double tol = options_.plane_tolerance_m;
+  std::vector<Eigen::Vector3f> normals(n);
+  for (std::size_t i = 0; i < n; ++i) normals[i] = map->normal(i);
+
+  // Floor: peak of the height histogram of upward elements near z = 0 (1 cm bins).
+  const double cos_floor = std::cos(options_.floor_max_tilt_deg * M_PI / 180.0);
+  const double bin = 0.01;
+  const int num_bins = static_cast<int>(std::ceil(2.0 * options_.floor_search_height_m / bin)) + 1;
+  std::vector<double> hist(num_bins, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = map->position(i).z();
+    if (normals[i].z() < cos_floor || std::fabs(z) > options_.floor_search_height_m) continue;
+    const int b = std::clamp(static_cast<int>((z + options_.floor_search_height_m) / bin), 0, num_bins - 1);
+    hist[b] += 1.0;
+  }
+  int best_bin = -1;
+  double best = 0.0;
+  for (int b = 0; b < num_bins; ++b) {
+    const double s = hist[b] + (b > 0 ? hist[b - 1] : 0.0) + (b + 1 < num_bins ? hist[b + 1] : 0.0);
+    if (s > best) {
+      best = s;
+      best_bin = b;
+    }
+  }
+  if (best_bin >= 0 && best * voxel_area >= options_.floor_min_area_m2) {
+    const double z_peak = (best_bin + 0.5) * bin - options_.floor_search_height_m;
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double z = map->position(i).z();
+      if (normals[i].z() >= cos_floor && std::fabs(z - z_peak) < tol) {
+        sum += z;
+        ++count;
+      }
+    }
+    result.has_floor = count > 0;
+    result.floor_height_m = count > 0 ? sum / count : z_peak;
+    result.floor_area_m2 = count * voxel_area;
+  }
+
+  // Walls: Hough votes over (azimuth of the horizontal normal, offset along it).
+  const double sin_wall = std::sin(options_.wall_max_tilt_deg * M_PI / 180.0);
+  const double abin = options_.wall_angle_bin_deg * M_PI / 180.0;
+  const int num_abins = std::max(1, static_cast<int>(std::round(2.0 * M_PI / abin)));
+  const double obin = options_.wall_offset_bin_m;
+  std::vector<std::uint32_t> vertical;
+  std::vector<double> azimuth, offset;
+  std::unordered_map<std::int64_t, double> votes;
+  auto bin_key = [](std::int64_t a, std::int64_t o) { return (o << 16) ^ a; };
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f& nr = normals[i];
+    if (std::fabs(nr.z()) > sin_wall) continue;
+    const double th = std::atan2(nr.y(), nr.x());
+    const double h = std::hypot(nr.x(), nr.y());
+    const Eigen::Vector3f& p = map->position(i);
+    const double d = (nr.x() * p.x() + nr.y() * p.y()) / h;
+    vertical.push_back(static_cast<std::uint32_t>(i));
+    azimuth.push_back(th);
+    offset.push_back(d);
+    const std::int64_t a = static_cast<std::int64_t>(std::floor((th + M_PI) / abin)) % num_abins;
+    const std::int64_t o = static_cast<std::int64_t>(std::floor(d / obin));
+    votes[bin_key(a, o)] += 1.0;
+  }
+  struct Candidate {
+    double votes;
+    std::int64_t a, o;
+  };
+  std::vector<Candidate> candidates;
+  for (const auto& kv : votes) {
+    const std::int64_t o = kv.first >> 16;
+    const std::int64_t a = kv.first - (o << 16);
+    candidates.push_back({kv.second, a, o});
+  }
+  // Neighbourhood sums (3 x 3 bins, angle wraps) make peaks robust to bin boundaries.
+  for (Candidate& c : candidates) {
+    double s = 0.0;
+    for (int da = -1; da <= 1; ++da) {
+      for (int dof = -1; dof <= 1; ++dof) {
+        const std::int64_t a = ((c.a + da) % num_abins + num_abins) % num_abins;
+        auto it = votes.find(bin_key(a, c.o + dof));
+        if (it != votes.end()) s += it->second;
+      }
+    }
+    c.votes = s;
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return x.votes != y.votes ? x.votes > y.votes : (x.a != y.a ? x.a < y.a : x.o < y.o);
+  });
+  const double cos_tag = std::cos(kTagMaxAngleDeg * M_PI / 180.0);
+  int evaluated = 0;
+  for (const Candidate& c : candidates) {
+    if (c.votes * voxel_area < options_.wall_min_area_m2) break;
+    if (static_cast<int>(result.walls.size()) >= options_.wall_max_count || evaluated > 4 * options_.wall_max_count) break;
+    const double th_c = (c.a + 0.5) * abin - M_PI;
+    const double d_c = (c.o + 0.5) * obin;
+    bool suppressed = false;
+    for (const WallPlane& w : result.walls) {
+      const double th_w = std::atan2(w.normal.y(), w.normal.x());
+      if (AngleDiff(th_w, th_c) < 3 * abin && std::fabs(w.offset_m - d_c) < 3 * obin) suppressed = true;
+    }
+    if (suppressed) continue;
+    ++evaluated;
+    // Refine: mean normal and offset of the elements near the peak.
+    Eigen::Vector2d nsum = Eigen::Vector2d::Zero();
+    for (std::size_t k = 0; k < vertical.size(); ++k) {
+      if (AngleDiff(azimuth[k], th_c) <= 1.5 * abin && std::fabs(offset[k] - d_c) <= 1.5 * obin) {
+        const Eigen::Vector3f& nr = normals[vertical[k]];
+        nsum += Eigen::Vector2d(nr.x(), nr.y());
+      }
+    }
+    if (nsum.norm() <= 0.0) continue;
+    WallPlane wall;
+    wall.normal = Eigen::Vector3d(nsum.x(), nsum.y(), 0.0).normalized();
+    double dsum = 0.0;
+    std::size_t dcount = 0;
+    for (std::size_t k = 0; k < vertical.size(); ++k) {
+      const Eigen::Vector3d p = map->position(vertical[k]).cast<double>();
+      if (std::fabs(wall.normal.dot(p) - d_c) < 1.5 * obin && normals[vertical[k]].cast<double>().dot(wall.normal) > cos_tag) {
+        dsum += wall.normal.dot(p);
+        ++dcount;
+      }
+    }
+    if (dcount == 0) continue;
+    wall.offset_m = dsum / dcount;
+    // Inliers, extent, and how much lies behind the plane.
+    std::size_t inliers = 0, behind = 0;
+    wall.z_min_m = wall.span_min_m = std::numeric_limits<double>::infinity();
+    wall.z_max_m = wall.span_max_m = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d p = map->position(i).cast<double>();
+      const double sd = wall.SignedDistance(p);
+      if (sd < -2.0 * tol) ++behind;
+      if (std::fabs(sd) < tol && normals[i].cast<double>().dot(wall.normal) > cos_tag) {
+        ++inliers;
+        wall.z_min_m = std::min(wall.z_min_m, p.z());
+        wall.z_max_m = std::max(wall.z_max_m, p.z());
+        const double s = -wall.normal.y() * p.x() + wall.normal.x() * p.y();
+        wall.span_min_m = std::min(wall.span_min_m, s);
+        wall.span_max_m = std::max(wall.span_max_m, s);
+      }
+    }
+    wall.area_m2 = inliers * voxel_area;
+    if (wall.area_m2 < options_.wall_min_area_m2) continue;
+    if (wall.z_max_m - wall.z_min_m < options_.wall_min_height_m) continue;
+    if (static_cast<double>(behind) > options_.wall_max_behind_fraction * static_cast<double>(n)) continue;
+    result.walls.push_back(wall);
+  }
+
+  // Rewrite the tags.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p = map->position(i).cast<double>();
+    const Eigen::Vector3d nr = normals[i].cast<double>();
+    Structure s = Structure::kNone;
+    if (result.has_floor && nr.z() >= cos_floor && std::fabs(p.z() - result.floor_height_m) < tol) {
+      s = Structure::kFloor;
+      ++result.num_floor_elements;
+    } else {
+      for (const WallPlane& w : result.walls) {
+        if (std::fabs(w.SignedDistance(p)) < tol && nr.dot(w.normal) > cos_tag) {
+          s = Structure::kWall;
+          ++result.num_wall_elements;
+          break;
+        }
+      }
+    }
+    map->SetStructure(i, s);
+  }
+  return result;
+}
+
+}  // namespace objscan::mapping

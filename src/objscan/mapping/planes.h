@@ -1,0 +1,78 @@
+#pragma once
+// Floor and walls of the fused surface (paper §5.1, "Floor and wall"): the floor is the dominant
+// horizontal plane near z = 0, walls are large vertical planes that bound the observed surface
+// (almost nothing lies behind them). Their elements are tagged structural in the SurfaceMap and so
+// stay out of the components C.
+#include <Eigen/Core>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/mapping/surface_map.h"
+
+namespace objscan::mapping {
+
+struct StructureOptions {
+  double floor_search_height_m = 0.3;   // the floor is looked for within +-this of z = 0
+  double floor_max_tilt_deg = 20.0;     // element normals within this of +Z count as floor
+  double floor_min_area_m2 = 0.3;
+  double plane_tolerance_m = 0.03;      // element-to-plane distance that tags an element
+  double wall_max_tilt_deg = 15.0;      // element normals within this of horizontal
+  double wall_angle_bin_deg = 3.0;      // Hough bins over (normal azimuth, offset)
+  double wall_offset_bin_m = 0.04;
+  double wall_min_area_m2 = 0.8;
+  double wall_min_height_m = 1.0;       // vertical extent of the wall's elements
+  double wall_max_behind_fraction = 0.03;  // share of all elements farther than tolerance behind it
+  int wall_max_count = 12;
+
+  template <class V>
+  void Visit(V& v) {
+    v("floor_search_height_m", floor_search_height_m);
+    v("floor_max_tilt_deg", floor_max_tilt_deg);
+    v("floor_min_area_m2", floor_min_area_m2);
+    v("plane_tolerance_m", plane_tolerance_m);
+    v("wall_max_tilt_deg", wall_max_tilt_deg);
+    v("wall_angle_bin_deg", wall_angle_bin_deg);
+    v("wall_offset_bin_m", wall_offset_bin_m);
+    v("wall_min_area_m2", wall_min_area_m2);
+    v("wall_min_height_m", wall_min_height_m);
+    v("wall_max_behind_fraction", wall_max_behind_fraction);
+    v("wall_max_count", wall_max_count);
+  }
+  void Validate() const;
+};
+
+// A vertical wall plane n . x = offset with n horizontal, pointing into the room.
+struct WallPlane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  double offset_m = 0.0;
+  double area_m2 = 0.0;
+  double z_min_m = 0.0, z_max_m = 0.0;
+  // Extent along the wall direction t = (-n.y, n.x, 0): [span_min_m, span_max_m] of t . x.
+  double span_min_m = 0.0, span_max_m = 0.0;
+  double SignedDistance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset_m; }
+};
+
+struct StructureResult {
+  bool has_floor = false;
+  double floor_height_m = 0.0;
+  double floor_area_m2 = 0.0;
+  std::vector<WallPlane> walls;
+  std::size_t num_floor_elements = 0;
+  std::size_t num_wall_elements = 0;
+
+  // True when p is on the room side of every wall whose span covers it (margin in metres).
+  bool InsideWalls(const Eigen::Vector3d& p, double margin_m) const;
+};
+
+class StructureDetector {
+ public:
+  explicit StructureDetector(const StructureOptions& options = StructureOptions());
+  // Detects floor and walls over all elements and rewrites every element's structural tag.
+  StructureResult Update(SurfaceMap* map) const;
+  const StructureOptions& options() const { return options_; }
+
+ private:
+  StructureOptions options_;
+};
+
+}  // namespace objscan::mapping

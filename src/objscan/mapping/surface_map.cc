@@ -1,0 +1,359 @@
+#include "objscan/mapping/surface_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace objscan::mapping {
+
+using geometry::VoxelKey;
+using geometry::VoxelKeyHash;
+
+void SurfaceMapOptions::Validate() const {
+  config::RequireInRange("voxel_size_m", voxel_size_m, 0.001, 1.0);
+  config::RequireNonNegative("association_base_m", association_base_m);
+  config::RequireNonNegative("association_quadratic_per_m", association_quadratic_per_m);
+  config::RequireInRange("association_max_normal_angle_deg", association_max_normal_angle_deg, 0.0, 180.0);
+  config::RequireInRange("max_incidence_deg", max_incidence_deg, 0.0, 90.0);
+  config::RequireInRange("pixel_stride", pixel_stride, 1, 64);
+  normals.Validate();
+}
+
+SurfaceMap::SurfaceMap(const SurfaceMapOptions& options)
+    : options_(options), inv_voxel_size_(static_cast<float>(1.0 / options.voxel_size_m)) {
+  options_.Validate();
+  RebuildIndex(1 << 16);
+}
+
+void SurfaceMap::RebuildIndex(std::size_t capacity) {
+  std::size_t cap = 1;
+  while (cap < capacity) cap <<= 1;
+  slots_.assign(cap, Slot());
+  slot_mask_ = cap - 1;
+  const VoxelKeyHash hash;
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
+    std::size_t s = hash(keys_[i]) & slot_mask_;
+    while (slots_[s].index >= 0) s = (s + 1) & slot_mask_;
+    slots_[s].key = keys_[i];
+    slots_[s].index = static_cast<std::int32_t>(i);
+  }
+}
+
+std::int32_t SurfaceMap::Find(const VoxelKey& key) const {
+  std::size_t s = VoxelKeyHash()(key) & slot_mask_;
+  while (true) {
+    const Slot& slot = slots_[s];
+    if (slot.index < 0) return -1;
+    if (slot.key == key) return slot.index;
+    s = (s + 1) & slot_mask_;
+  }
+}
+
+std::int32_t SurfaceMap::Insert(const VoxelKey& key) {
+  if (2 * (keys_.size() + 1) > slots_.size()) RebuildIndex(2 * slots_.size());
+  const std::int32_t index = static_cast<std::int32_t>(keys_.size());
+  std::size_t s = VoxelKeyHash()(key) & slot_mask_;
+  while (slots_[s].index >= 0) s = (s + 1) & slot_mask_;
+  slots_[s].key = key;
+  slots_[s].index = index;
+  keys_.push_back(key);
+  position_.emplace_back(Eigen::Vector3f::Zero());
+  normal_sum_.emplace_back(Eigen::Vector3f::Zero());
+  weight_.push_back(0.f);
+  label_.push_back(0);
+  label_confidence_.push_back(0.f);
+  structure_.push_back(0);
+  gt_id_.push_back(0);
+  gt_id_.push_back(0);
+  gt_count_.push_back(0);
+  gt_count_.push_back(0);
+  return index;
+}
+
+void SurfaceMap::VoteGroundTruth(std::size_t i, std::int32_t instance) {
+  std::int32_t* id = &gt_id_[2 * i];
+  std::uint16_t* count = &gt_count_[2 * i];
+  for (int k = 0; k < 2; ++k) {
+    if (id[k] == instance && count[k] > 0) {
+      if (count[k] < 65535) ++count[k];
+      return;
+    }
+  }
+  for (int k = 0; k < 2; ++k) {
+    if (count[k] == 0) {
+      id[k] = instance;
+      count[k] = 1;
+      return;
+    }
+  }
+  --count[0];
+  --count[1];
+}
+
+std::int32_t SurfaceMap::gt_instance(std::size_t i) const {
+  const std::uint16_t c0 = gt_count_[2 * i], c1 = gt_count_[2 * i + 1];
+  if (c0 == 0 && c1 == 0) return 0;
+  return c0 >= c1 ? gt_id_[2 * i] : gt_id_[2 * i + 1];
+}
+
+void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* association) {
+  if (frame.depth_m.size() != static_cast<std::size_t>(frame.width()) * frame.height()) {
+    throw InputError("SurfaceMap::Integrate: depth_m has " + std::to_string(frame.depth_m.size()) +
+                     " values for a " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
+                     " frame");
+  }
+  VertexNormalMap& vnm = association ? association->vertex_normals : scratch_vertex_normals_;
+  ComputeVertexNormalMap(frame, options_.normals, &vnm);
+  const int w = frame.width(), h = frame.height();
+  if (association) {
+    association->pixel_element.assign(static_cast<std::size_t>(w) * h, -1);
+    association->num_fused = 0;
+    association->num_created = 0;
+  }
+  const bool has_gt = frame.gt_instance.size() == frame.depth_m.size();
+
+  const Eigen::Matrix3f R = frame.T_world_camera.rotation().cast<float>();
+  const Eigen::Vector3f t = frame.T_world_camera.translation().cast<float>();
+  const float voxel = static_cast<float>(options_.voxel_size_m);
+  const float cos_incidence_min = static_cast<float>(std::cos(options_.max_incidence_deg * M_PI / 180.0));
+  const float cos_assoc = static_cast<float>(std::cos(options_.association_max_normal_angle_deg * M_PI / 180.0));
+  const float cos_assoc_sq = cos_assoc * cos_assoc;
+  const float assoc_base = static_cast<float>(options_.association_base_m);
+  const float assoc_quad = static_cast<float>(options_.association_quadratic_per_m);
+  const sim::CameraIntrinsics& in = frame.intrinsics;
+  const int stride = options_.pixel_stride;
+
+  auto agrees = [&](std::int32_t idx, const Eigen::Vector3f& n) {
+    const Eigen::Vector3f& ns = normal_sum_[idx];
+    const float d = n.dot(ns);
+    return d > 0.f && d * d >= cos_assoc_sq * ns.squaredNorm();
+  };
+
+  std::size_t fused = 0, created = 0;
+  for (int v = 0; v < h; v += stride) {
+    const float ray_y = static_cast<float>((v - in.cy_px) / in.fy_px);
+    for (int u = 0; u < w; u += stride) {
+      const std::size_t i = static_cast<std::size_t>(v) * w + u;
+      if (!vnm.valid[i]) continue;
+      const float z = frame.depth_m[i];
+      const Eigen::Vector3f p_camera(static_cast<float>((u - in.cx_px) / in.fx_px) * z, ray_y * z, z);
+      const Eigen::Vector3f& n_camera = vnm.normal_camera[i];
+      const float cos_incidence = -n_camera.dot(p_camera) / p_camera.norm();
+      if (cos_incidence < cos_incidence_min) continue;
+      const float zc = z < 1.f ? 1.f : z;
+      const float weight = cos_incidence / (zc * zc);
+      const Eigen::Vector3f p = R * p_camera + t;
+      const Eigen::Vector3f n = R * n_camera;
+
+      const VoxelKey key = geometry::KeyOf(p, inv_voxel_size_);
+      std::int32_t idx = Find(key);
+      bool own_voxel_taken = idx >= 0;
+      if (idx >= 0 && !agrees(idx, n)) idx = -1;
+      if (idx < 0) {
+        // Search along the normal for the element this surface already has.
+        // An element stays filed under the voxel of its first point while its mean converges, so
+        // search twice the association distance and accept by the distance to the mean.
+        const float assoc_m = assoc_base + assoc_quad * z * z;
+        const int steps = 2 * static_cast<int>(std::ceil(assoc_m * inv_voxel_size_));
+        float best_dist = assoc_m;
+        VoxelKey last = key;
+        for (int s = 1; s <= steps; ++s) {
+          for (int sign = -1; sign <= 1; sign += 2) {
+            const VoxelKey k = geometry::KeyOf(p + (static_cast<float>(sign * s) * voxel) * n, inv_voxel_size_);
+            if (k == key || k == last) continue;
+            last = k;
+            const std::int32_t j = Find(k);
+            if (j >= 0 && agrees(j, n)) {
+              const float dist = std::fabs((position_[j] - p).dot(n));
+              if (dist <= best_dist) {
+                best_dist = dist;
+                idx = j;
+              }
+            }
+          }
+        }
+      }
+      if (idx < 0) {
+        VoxelKey k = key;
+        if (own_voxel_taken) {
+          // Another surface (e.g. the back of a thin board) owns this voxel: use the one in front.
+          k = geometry::KeyOf(p + (0.75f * voxel) * n, inv_voxel_size_);
+          if (Find(k) >= 0) continue;
+        }
+        idx = Insert(k);
+        ++created;
+      }
+      // Running weighted mean.
+      const float w_old = weight_[idx];
+      const float w_new = w_old + weight;
+      position_[idx] = (position_[idx] * w_old + p * weight) / w_new;
+      normal_sum_[idx] += weight * n;
+      weight_[idx] = w_new;
+      MarkDirty(label_[idx]);
+      if (has_gt) VoteGroundTruth(idx, frame.gt_instance[i]);
+      if (association) association->pixel_element[i] = idx;
+      ++fused;
+    }
+  }
+  if (association) {
+    association->num_fused = fused;
+    association->num_created = created;
+  }
+}
+
+void SurfaceMap::SetLabel(std::size_t i, std::int32_t label, float confidence) {
+  if (label_[i] != label) {
+    MarkDirty(label_[i]);
+    MarkDirty(label);
+  }
+  label_[i] = label;
+  label_confidence_[i] = confidence;
+}
+
+void SurfaceMap::VoteLabel(std::size_t i, std::int32_t label, float weight) {
+  if (label_[i] == label) {
+    label_confidence_[i] += weight;
+    return;
+  }
+  if (label_[i] == 0) {
+    label_[i] = label;
+    label_confidence_[i] = weight;
+    MarkDirty(label);
+    return;
+  }
+  label_confidence_[i] -= weight;
+  if (label_confidence_[i] < 0.f) {
+    MarkDirty(label_[i]);
+    MarkDirty(label);
+    label_[i] = label;
+    label_confidence_[i] = -label_confidence_[i];
+  }
+}
+
+void SurfaceMap::RelabelAll(const std::vector<std::int32_t>& from, std::int32_t to) {
+  if (from.empty()) return;
+  std::int32_t max_label = std::max(to, from.back());
+  std::vector<std::uint8_t> is_from(static_cast<std::size_t>(max_label) + 1, 0);
+  for (std::int32_t l : from) {
+    if (l > 0) is_from[l] = 1;
+  }
+  for (std::size_t i = 0; i < label_.size(); ++i) {
+    const std::int32_t l = label_[i];
+    if (l > 0 && l <= max_label && is_from[l]) label_[i] = to;
+  }
+  for (std::int32_t l : from) MarkDirty(l);
+  MarkDirty(to);
+}
+
+void SurfaceMap::SetStructure(std::size_t i, Structure s) {
+  if (structure_[i] != static_cast<std::uint8_t>(s)) {
+    structure_[i] = static_cast<std::uint8_t>(s);
+    MarkDirty(label_[i]);
+  }
+}
+
+namespace {
+std::vector<std::uint8_t> LabelMask(const std::vector<std::int32_t>& labels) {
+  std::int32_t max_label = 0;
+  for (std::int32_t l : labels) max_label = std::max(max_label, l);
+  std::vector<std::uint8_t> mask(static_cast<std::size_t>(max_label) + 1, 0);
+  for (std::int32_t l : labels) {
+    if (l > 0) mask[l] = 1;
+  }
+  return mask;
+}
+}  // namespace
+
+geometry::PointCloud SurfaceMap::Cloud(std::int32_t label) const {
+  return Cloud(std::vector<std::int32_t>{label});
+}
+
+geometry::PointCloud SurfaceMap::Cloud(const std::vector<std::int32_t>& labels) const {
+  const std::vector<std::uint8_t> mask = LabelMask(labels);
+  geometry::PointCloud cloud;
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
+    const std::int32_t l = label_[i];
+    if (l <= 0 || static_cast<std::size_t>(l) >= mask.size() || !mask[l] || structure_[i] != 0) continue;
+    cloud.points.push_back(position_[i]);
+    cloud.normals.push_back(normal(i));
+    cloud.labels.push_back(l);
+  }
+  return cloud;
+}
+
+geometry::PointCloud SurfaceMap::AllPoints() const {
+  geometry::PointCloud cloud;
+  cloud.points = position_;
+  cloud.normals.resize(keys_.size());
+  for (std::size_t i = 0; i < keys_.size(); ++i) cloud.normals[i] = normal(i);
+  cloud.labels = label_;
+  return cloud;
+}
+
+std::vector<std::int32_t> SurfaceMap::Labels() const {
+  std::vector<std::uint8_t> seen;
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
+    const std::int32_t l = label_[i];
+    if (l <= 0 || structure_[i] != 0) continue;
+    if (static_cast<std::size_t>(l) >= seen.size()) seen.resize(2 * l + 16, 0);
+    if (!seen[l]) {
+      seen[l] = 1;
+      out.push_back(l);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::int32_t> SurfaceMap::TakeDirtyLabels() {
+  std::vector<std::int32_t> out;
+  out.swap(dirty_labels_);
+  for (std::int32_t l : out) dirty_flag_[l] = 0;
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::size_t SurfaceMap::Remove(const std::vector<std::int32_t>& labels) {
+  const std::vector<std::uint8_t> mask = LabelMask(labels);
+  std::size_t out = 0;
+  const std::size_t n = keys_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t l = label_[i];
+    if (l > 0 && static_cast<std::size_t>(l) < mask.size() && mask[l]) continue;
+    if (out != i) {
+      keys_[out] = keys_[i];
+      position_[out] = position_[i];
+      normal_sum_[out] = normal_sum_[i];
+      weight_[out] = weight_[i];
+      label_[out] = label_[i];
+      label_confidence_[out] = label_confidence_[i];
+      structure_[out] = structure_[i];
+      gt_id_[2 * out] = gt_id_[2 * i];
+      gt_id_[2 * out + 1] = gt_id_[2 * i + 1];
+      gt_count_[2 * out] = gt_count_[2 * i];
+      gt_count_[2 * out + 1] = gt_count_[2 * i + 1];
+    }
+    ++out;
+  }
+  const std::size_t removed = n - out;
+  keys_.resize(out);
+  position_.resize(out);
+  normal_sum_.resize(out);
+  weight_.resize(out);
+  label_.resize(out);
+  label_confidence_.resize(out);
+  structure_.resize(out);
+  gt_id_.resize(2 * out);
+  gt_count_.resize(2 * out);
+  RebuildIndex(slots_.size());
+  for (std::int32_t l : labels) MarkDirty(l);
+  return removed;
+}
+
+geometry::Aabb3 SurfaceMap::Bounds() const {
+  geometry::Aabb3 box;
+  for (const auto& p : position_) box.Extend(p.cast<double>());
+  return box;
+}
+
+}  // namespace objscan::mapping

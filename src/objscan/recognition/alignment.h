@@ -1,0 +1,84 @@
+#pragma once
+// Aligning a (possibly partial) query point set to a database item. Gravity is known (both are Z up),
+// so the search is over yaw (a fixed number of angles) and translation, then trimmed ICP with
+// 4 degrees of freedom (yaw + translation) and optionally a uniform scale. Correspondences go from
+// the query to the item, so a partial query is matched against the part of the item it covers.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/geometry/aabb.h"
+#include "objscan/recognition/kd_tree.h"
+
+namespace objscan::recognition {
+
+struct AlignmentOptions {
+  int yaw_steps = 24;                 // initial yaw hypotheses, evenly spaced over 360 deg
+  bool side_translation_inits = true; // besides centring, align each side of the footprints (partial views)
+  int coarse_points = 96;             // query points used in the hypothesis search
+  int coarse_iterations = 5;          // ICP rounds per hypothesis
+  int refine_hypotheses = 3;          // best hypotheses refined with all query points
+  int refine_iterations = 25;
+  double trim_fraction = 0.85;        // share of best correspondences kept in each ICP round
+  double inlier_distance_m = 0.03;    // a query point within this of the item counts as explained
+  bool estimate_scale = false;        // uniform scale in [min_scale, max_scale]
+  double min_scale = 0.8;
+  double max_scale = 1.25;
+  double convergence_m = 1e-5;        // stop refining when the update moves points less than this
+
+  template <class V>
+  void Visit(V& v) {
+    v("yaw_steps", yaw_steps);
+    v("side_translation_inits", side_translation_inits);
+    v("coarse_points", coarse_points);
+    v("coarse_iterations", coarse_iterations);
+    v("refine_hypotheses", refine_hypotheses);
+    v("refine_iterations", refine_iterations);
+    v("trim_fraction", trim_fraction);
+    v("inlier_distance_m", inlier_distance_m);
+    v("estimate_scale", estimate_scale);
+    v("min_scale", min_scale);
+    v("max_scale", max_scale);
+    v("convergence_m", convergence_m);
+  }
+  void Validate() const;
+};
+
+// The item side of an alignment, prepared once per item (kd-tree over its points).
+class AlignmentTarget {
+ public:
+  AlignmentTarget() = default;
+  explicit AlignmentTarget(const std::vector<Eigen::Vector3f>& item_points);
+  const KdTree3& tree() const { return tree_; }
+  const geometry::Aabb3& bounds() const { return bounds_; }
+  const Eigen::Vector3d& centroid() const { return centroid_; }
+  bool empty() const { return tree_.empty(); }
+
+ private:
+  KdTree3 tree_;
+  geometry::Aabb3 bounds_;
+  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
+};
+
+enum class AlignmentStatus {
+  kOk,
+  kEmptyInput,  // the query or the item has no points
+};
+
+struct AlignmentResult {
+  AlignmentStatus status = AlignmentStatus::kEmptyInput;
+  // Maps query points into the item frame: p_item = T_item_query * p_query (rotation about Z,
+  // translation, and the uniform scale when estimated).
+  Eigen::Affine3d T_item_query = Eigen::Affine3d::Identity();
+  double yaw_rad = 0.0;
+  double scale = 1.0;
+  double trimmed_rms_m = 0.0;     // RMS distance of the kept correspondences
+  double inlier_fraction = 0.0;   // share of query points within inlier_distance_m of the item
+  bool ok() const { return status == AlignmentStatus::kOk; }
+};
+
+AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
+                            const AlignmentOptions& options);
+
+}  // namespace objscan::recognition

@@ -1,0 +1,98 @@
+#include "objscan/recognition/alignment.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "objscan/geometry/pose.h"
+#include "objscan/recognition/keypoints.h"
+#include "objscan/recognition/test_shapes.h"
+
+namespace objscan::recognition {
+namespace {
+
+std::vector<Eigen::Vector3f> Keypoints(const std::vector<Eigen::Vector3f>& pts, std::uint64_t seed) {
+  KeypointOptions options;
+  Rng rng(seed);
+  std::vector<Eigen::Vector3f> kp;
+  for (int i : SampleKeypointsLloyd(pts, options, &rng)) kp.push_back(pts[i]);
+  return kp;
+}
+
+// The query is the item moved by T_query_item; alignment must return its inverse.
+void ExpectRecovers(const AlignmentResult& r, double yaw_rad, const Eigen::Vector3d& offset_m) {
+  ASSERT_TRUE(r.ok());
+  Eigen::Affine3d T_query_item = Eigen::Affine3d::Identity();
+  T_query_item.rotate(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()));
+  T_query_item.translation() = offset_m;
+  const Eigen::Affine3d err = r.T_item_query * T_query_item;  // identity when exact
+  const double angle_err = Eigen::AngleAxisd(err.linear()).angle();
+  EXPECT_LT(geometry::RadToDeg(angle_err), 2.0);
+  EXPECT_LT(err.translation().norm(), 0.01);
+}
+
+TEST(AlignmentTest, RecoversKnownYawAndOffsetOfAFullObject) {
+  std::vector<Eigen::Vector3f> chair, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  const AlignmentTarget target(chair);
+  AlignmentOptions options;
+  for (double yaw_deg : {37.0, 143.0, -101.0}) {
+    const double yaw = geometry::DegToRad(yaw_deg);
+    const Eigen::Vector3d offset(1.7, -2.3, 0.05);
+    Eigen::Affine3d T = Eigen::Affine3d::Identity();
+    T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+    T.translation() = offset;
+    // Query: an independent, coarser sampling of the same surface, moved.
+    std::vector<Eigen::Vector3f> resampled, n2;
+    testing::ChairLike(0.013, &resampled, &n2);
+    std::vector<Eigen::Vector3f> query;
+    for (const auto& p : Keypoints(resampled, 3)) query.push_back((T * p.cast<double>()).cast<float>());
+    SCOPED_TRACE(yaw_deg);
+    ExpectRecovers(AlignToItem(query, target, options), yaw, offset);
+  }
+}
+
+TEST(AlignmentTest, RecoversKnownYawAndOffsetOfAPartialView) {
+  std::vector<Eigen::Vector3f> chair, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  const AlignmentTarget target(chair);
+  const double yaw = geometry::DegToRad(-58.0);
+  const Eigen::Vector3d offset(-0.4, 0.9, 0.0);
+  Eigen::Affine3d T = Eigen::Affine3d::Identity();
+  T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  T.translation() = offset;
+  // Only what a camera at +x sees from the front: points with normals facing +x or up, x > -0.1.
+  std::vector<Eigen::Vector3f> partial;
+  for (std::size_t i = 0; i < chair.size(); ++i) {
+    if (normals[i].x() > 0.5f || normals[i].z() > 0.5f || normals[i].y() < -0.5f) {
+      partial.push_back((T * chair[i].cast<double>()).cast<float>());
+    }
+  }
+  AlignmentOptions options;
+  const AlignmentResult r = AlignToItem(Keypoints(partial, 5), target, options);
+  ExpectRecovers(r, yaw, offset);
+  EXPECT_GT(r.inlier_fraction, 0.95);
+}
+
+TEST(AlignmentTest, EstimatesAUniformScaleWhenAsked) {
+  std::vector<Eigen::Vector3f> chair, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  const AlignmentTarget target(chair);
+  std::vector<Eigen::Vector3f> query;
+  for (const auto& p : Keypoints(chair, 8)) query.push_back(Eigen::Vector3f(1.1f * p) + Eigen::Vector3f(0.2f, 0.f, 0.f));
+  AlignmentOptions options;
+  options.estimate_scale = true;
+  const AlignmentResult r = AlignToItem(query, target, options);
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r.scale, 1.0 / 1.1, 0.01);
+  EXPECT_LT(r.trimmed_rms_m, 0.01);
+}
+
+TEST(AlignmentTest, EmptyInputIsAStatus) {
+  const AlignmentTarget target(std::vector<Eigen::Vector3f>{{0, 0, 0}});
+  EXPECT_EQ(AlignToItem({}, target, AlignmentOptions()).status, AlignmentStatus::kEmptyInput);
+  EXPECT_EQ(AlignToItem({{0, 0, 0}}, AlignmentTarget(), AlignmentOptions()).status, AlignmentStatus::kEmptyInput);
+}
+
+}  // namespace
+}  // namespace objscan::recognition

@@ -1,0 +1,135 @@
+#include "objscan/recognition/kd_tree.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+namespace objscan::recognition {
+namespace {
+constexpr int kLeafSize = 12;
+}  // namespace
+
+void KdTree3::Build(const std::vector<Eigen::Vector3f>& points) {
+  points_ = points;
+  order_.resize(points_.size());
+  std::iota(order_.begin(), order_.end(), 0);
+  nodes_.clear();
+  nodes_.reserve(2 * points_.size() / kLeafSize + 2);
+  if (!points_.empty()) BuildNode(0, static_cast<int>(points_.size()));
+  ordered_.resize(points_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i) ordered_[i] = points_[order_[i]];
+}
+
+int KdTree3::BuildNode(int begin, int end) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  nodes_[id].begin = begin;
+  nodes_[id].end = end;
+  if (end - begin <= kLeafSize) return id;
+  Eigen::Vector3f lo = points_[order_[begin]], hi = lo;
+  for (int i = begin + 1; i < end; ++i) {
+    lo = lo.cwiseMin(points_[order_[i]]);
+    hi = hi.cwiseMax(points_[order_[i]]);
+  }
+  int dim = 0;
+  (hi - lo).maxCoeff(&dim);
+  if (hi[dim] <= lo[dim]) return id;  // all points coincide: keep a leaf
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](int a, int b) { return points_[a][dim] < points_[b][dim]; });
+  const float split = points_[order_[mid]][dim];
+  const int left = BuildNode(begin, mid);
+  const int right = BuildNode(mid, end);
+  Node& n = nodes_[id];
+  n.dim = dim;
+  n.split = split;
+  n.left = left;
+  n.right = right;
+  return id;
+}
+
+void KdTree3::NearestRec(int node_id, const Eigen::Vector3f& q, int* best, float* best_d2) const {
+  const Node& n = nodes_[node_id];
+  if (n.dim < 0) {
+    for (int i = n.begin; i < n.end; ++i) {
+      const float d2 = (ordered_[i] - q).squaredNorm();
+      if (d2 < *best_d2) {
+        *best_d2 = d2;
+        *best = i;
+      }
+    }
+    return;
+  }
+  const float diff = q[n.dim] - n.split;
+  const int near = diff < 0.f ? n.left : n.right;
+  const int far = diff < 0.f ? n.right : n.left;
+  NearestRec(near, q, best, best_d2);
+  if (diff * diff < *best_d2) NearestRec(far, q, best, best_d2);
+}
+
+int KdTree3::Nearest(const Eigen::Vector3f& q, float* squared_distance) const {
+  if (points_.empty()) {
+    if (squared_distance) *squared_distance = std::numeric_limits<float>::infinity();
+    return -1;
+  }
+  int best = -1;
+  float best_d2 = std::numeric_limits<float>::infinity();
+  NearestRec(0, q, &best, &best_d2);
+  if (squared_distance) *squared_distance = best_d2;
+  return order_[best];
+}
+
+void KdTree3::KNearest(const Eigen::Vector3f& q, int k, std::vector<int>* indices,
+                       std::vector<float>* squared_distances) const {
+  indices->clear();
+  if (squared_distances) squared_distances->clear();
+  if (points_.empty() || k <= 0) return;
+  // Max-heap of (d2, ordered index) holding the k best so far.
+  std::vector<std::pair<float, int>> heap;
+  heap.reserve(k + 1);
+  std::vector<int> stack;
+  stack.push_back(0);
+  // Depth-first with explicit stack; each entry carries no bound, so re-check at visit time via the
+  // split distance stored alongside.
+  std::vector<float> stack_bound;
+  stack_bound.push_back(0.f);
+  while (!stack.empty()) {
+    const int id = stack.back();
+    const float bound = stack_bound.back();
+    stack.pop_back();
+    stack_bound.pop_back();
+    if (static_cast<int>(heap.size()) == k && bound >= heap.front().first) continue;
+    const Node& n = nodes_[id];
+    if (n.dim < 0) {
+      for (int i = n.begin; i < n.end; ++i) {
+        const float d2 = (ordered_[i] - q).squaredNorm();
+        if (static_cast<int>(heap.size()) < k) {
+          heap.emplace_back(d2, i);
+          std::push_heap(heap.begin(), heap.end());
+        } else if (d2 < heap.front().first) {
+          std::pop_heap(heap.begin(), heap.end());
+          heap.back() = {d2, i};
+          std::push_heap(heap.begin(), heap.end());
+        }
+      }
+      continue;
+    }
+    const float diff = q[n.dim] - n.split;
+    const int near = diff < 0.f ? n.left : n.right;
+    const int far = diff < 0.f ? n.right : n.left;
+    // Push far first so near is explored first.
+    stack.push_back(far);
+    stack_bound.push_back(std::max(bound, diff * diff));
+    stack.push_back(near);
+    stack_bound.push_back(bound);
+  }
+  std::sort_heap(heap.begin(), heap.end());
+  indices->reserve(heap.size());
+  for (const auto& [d2, i] : heap) {
+    indices->push_back(order_[i]);
+    if (squared_distances) squared_distances->push_back(d2);
+  }
+}
+
+}  // namespace objscan::recognition

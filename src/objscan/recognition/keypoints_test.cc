@@ -1,0 +1,104 @@
+#include "objscan/recognition/keypoints.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "objscan/recognition/test_shapes.h"
+
+namespace objscan::recognition {
+namespace {
+
+// Distance of each point to its nearest other point, ascending (brute force).
+std::vector<double> NearestNeighbourDistances(const std::vector<Eigen::Vector3f>& pts) {
+  std::vector<double> nn;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    double best = 1e9;
+    for (std::size_t j = 0; j < pts.size(); ++j) {
+      if (j != i) best = std::min<double>(best, (pts[i] - pts[j]).norm());
+    }
+    nn.push_back(best);
+  }
+  std::sort(nn.begin(), nn.end());
+  return nn;
+}
+
+TEST(KeypointsTest, LloydKeypointsAreSpreadOnAUniformPlane) {
+  Rng data_rng(3);
+  const auto plane = testing::UniformPlane(2.0, 1.0, 20000, &data_rng);
+  KeypointOptions options;
+  options.density_voxel_m = 0.0;
+  Rng rng(7);
+  const std::vector<int> idx = SampleKeypointsLloyd(plane, options, &rng);
+  ASSERT_EQ(idx.size(), 500u);
+  std::vector<Eigen::Vector3f> kp;
+  for (int i : idx) kp.push_back(plane[i]);
+  // Hexagonal packing of 500 points on 2 m^2 has spacing sqrt(2 * A / (sqrt(3) * n)) = 0.068 m.
+  const double hex_spacing = std::sqrt(2.0 * 2.0 / (std::sqrt(3.0) * 500));
+  // A centroidal Voronoi relaxation is near-hexagonal with a few local defects: no two keypoints are
+  // closer than 0.4 of the ideal spacing and 95% have their nearest neighbour beyond 0.55 of it.
+  const std::vector<double> nn = NearestNeighbourDistances(kp);
+  EXPECT_GT(nn.front(), 0.4 * hex_spacing);
+  EXPECT_GT(nn[nn.size() / 20], 0.55 * hex_spacing);
+  // Random sampling of the same points is far less even: its closest pair is much closer.
+  std::vector<Eigen::Vector3f> random(plane.begin(), plane.begin() + 500);
+  EXPECT_LT(NearestNeighbourDistances(random).front(), 0.2 * hex_spacing);
+  // Every part of the plane is near a keypoint (covering radius close to the hex cell's).
+  double worst = 0.0;
+  for (int i = 0; i < 20000; i += 7) {
+    double best = 1e9;
+    for (const auto& k : kp) best = std::min<double>(best, (k - plane[i]).norm());
+    worst = std::max(worst, best);
+  }
+  EXPECT_LT(worst, 1.2 * hex_spacing);
+}
+
+TEST(KeypointsTest, DeterministicDistinctAndSnappedToInputPoints) {
+  Rng data_rng(5);
+  const auto plane = testing::UniformPlane(1.0, 1.0, 8000, &data_rng);
+  KeypointOptions options;
+  Rng a(11), b(11);
+  const auto ka = SampleKeypointsLloyd(plane, options, &a);
+  const auto kb = SampleKeypointsLloyd(plane, options, &b);
+  EXPECT_EQ(ka, kb);
+  std::set<int> distinct(ka.begin(), ka.end());
+  EXPECT_EQ(distinct.size(), ka.size());
+  for (int i : ka) {
+    EXPECT_GE(i, 0);
+    EXPECT_LT(i, 8000);
+  }
+}
+
+TEST(KeypointsTest, FewerPointsThanKeypointsGivesAllPoints) {
+  Rng data_rng(1);
+  const auto plane = testing::UniformPlane(1.0, 1.0, 120, &data_rng);
+  KeypointOptions options;
+  options.density_voxel_m = 0.0;
+  Rng rng(1);
+  const auto k = SampleKeypointsLloyd(plane, options, &rng);
+  ASSERT_EQ(k.size(), 120u);
+  for (int i = 0; i < 120; ++i) EXPECT_EQ(k[i], i);
+}
+
+TEST(KeypointsTest, DensityVoxelMakesKeypointsFollowAreaNotSampling) {
+  // Left half sampled 10x more densely than the right half: after voxel thinning the keypoints
+  // split about evenly between the halves.
+  Rng data_rng(9);
+  std::vector<Eigen::Vector3f> pts;
+  for (int i = 0; i < 40000; ++i) pts.emplace_back(data_rng.Uniform(0, 0.5), data_rng.Uniform(0, 1), 0.f);
+  for (int i = 0; i < 4000; ++i) pts.emplace_back(data_rng.Uniform(0.5, 1), data_rng.Uniform(0, 1), 0.f);
+  KeypointOptions options;
+  options.num_keypoints = 200;
+  options.density_voxel_m = 0.02;
+  Rng rng(2);
+  const auto k = SampleKeypointsLloyd(pts, options, &rng);
+  ASSERT_EQ(k.size(), 200u);
+  int left = 0;
+  for (int i : k) left += pts[i].x() < 0.5f ? 1 : 0;
+  EXPECT_NEAR(left, 100, 15);
+}
+
+}  // namespace
+}  // namespace objscan::recognition

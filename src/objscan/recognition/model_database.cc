@@ -1,0 +1,354 @@
+#include "objscan/recognition/model_database.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <type_traits>
+
+#include "objscan/common/error.h"
+
+namespace objscan::recognition {
+
+const char* EntryKindName(EntryKind kind) {
+  switch (kind) {
+    case EntryKind::kFullModel: return "model";
+    case EntryKind::kComponent: return "component";
+    case EntryKind::kPair: return "pair";
+  }
+  return "unknown";
+}
+
+namespace {
+
+constexpr char kMagic[8] = {'O', 'B', 'J', 'S', 'C', 'D', 'B', '\n'};
+// Header: magic, u32 version, u64 payload size, u64 FNV-1a checksum of the payload.
+constexpr std::size_t kHeaderSize = 8 + 4 + 8 + 8;
+
+std::uint64_t Fnv1a(const char* data, std::size_t size) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+// Little-endian writer (objscan targets little-endian hosts; the format is defined little-endian).
+class Writer {
+ public:
+  template <class T>
+  void Pod(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const char* p = reinterpret_cast<const char*>(&v);
+    buf_.insert(buf_.end(), p, p + sizeof(T));
+  }
+  void String(const std::string& s) {
+    Pod(static_cast<std::uint32_t>(s.size()));
+    buf_.insert(buf_.end(), s.begin(), s.end());
+  }
+  template <class T>
+  void Array(const T* data, std::size_t count) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const char* p = reinterpret_cast<const char*>(data);
+    buf_.insert(buf_.end(), p, p + count * sizeof(T));
+  }
+  void Points(const std::vector<Eigen::Vector3f>& pts) {
+    Pod(static_cast<std::uint32_t>(pts.size()));
+    for (const auto& p : pts) Array(p.data(), 3);
+  }
+  const std::vector<char>& buffer() const { return buf_; }
+
+ private:
+  std::vector<char> buf_;
+};
+
+class Reader {
+ public:
+  Reader(const char* data, std::size_t size, const std::string& path) : p_(data), end_(data + size), path_(path) {}
+  template <class T>
+  T Pod(const char* what) {
+    T v;
+    Need(sizeof(T), what);
+    std::memcpy(&v, p_, sizeof(T));
+    p_ += sizeof(T);
+    return v;
+  }
+  std::uint32_t Count(std::size_t element_size, const char* what) {
+    const auto n = Pod<std::uint32_t>(what);
+    // A count can never exceed what is left of the file.
+    if (element_size > 0 && n > static_cast<std::size_t>(end_ - p_) / element_size) Truncated(what);
+    return n;
+  }
+  std::string String(const char* what) {
+    const std::uint32_t n = Count(1, what);
+    std::string s(p_, n);
+    p_ += n;
+    return s;
+  }
+  template <class T>
+  void Array(T* out, std::size_t count, const char* what) {
+    Need(count * sizeof(T), what);
+    std::memcpy(out, p_, count * sizeof(T));
+    p_ += count * sizeof(T);
+  }
+  std::vector<Eigen::Vector3f> Points(const char* what) {
+    const std::uint32_t n = Count(12, what);
+    std::vector<Eigen::Vector3f> pts(n);
+    for (auto& p : pts) Array(p.data(), 3, what);
+    return pts;
+  }
+  bool AtEnd() const { return p_ == end_; }
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw InputError(path_ + ": corrupt model database (" + what + ")");
+  }
+
+ private:
+  void Need(std::size_t n, const char* what) {
+    if (static_cast<std::size_t>(end_ - p_) < n) Truncated(what);
+  }
+  [[noreturn]] void Truncated(const char* what) const {
+    throw InputError(path_ + ": truncated or corrupt model database (at " + what + ")");
+  }
+  const char* p_;
+  const char* end_;
+  const std::string& path_;
+};
+
+world::Category ReadCategory(Reader* r, const char* what) {
+  const std::string name = r->String(what);
+  const auto c = world::ParseCategory(name);
+  if (!c) r->Fail(std::string("unknown category '") + name + "' in " + what);
+  return *c;
+}
+
+}  // namespace
+
+void ModelDatabase::Save(const std::string& path) const {
+  Writer w;
+  // Settings.
+  w.Pod<std::int32_t>(settings_.keypoints.num_keypoints);
+  w.Pod<std::int32_t>(settings_.keypoints.lloyd_iterations);
+  w.Pod<double>(settings_.keypoints.density_voxel_m);
+  w.Pod<std::int32_t>(settings_.keypoints.max_relaxation_points);
+  w.Pod<std::uint64_t>(settings_.keypoint_seed);
+  w.String(settings_.descriptor.type);
+  w.Pod<double>(settings_.descriptor.support_radius_m);
+  w.Pod<double>(settings_.descriptor.normal_radius_m);
+  w.Pod<double>(settings_.descriptor.surface_voxel_m);
+  w.Pod<std::int32_t>(settings_.bow.height_bands);
+  w.Pod<std::int32_t>(settings_.bow.radial_rings);
+  w.Pod<double>(settings_.bow.spatial_weight);
+  // Vocabulary.
+  w.Pod<std::int32_t>(vocabulary_.dimension());
+  w.Pod<std::int32_t>(vocabulary_.soft_assignments());
+  w.Pod<float>(vocabulary_.sigma2());
+  w.Pod<std::uint32_t>(static_cast<std::uint32_t>(vocabulary_.words().size()));
+  w.Array(vocabulary_.words().data(), vocabulary_.words().size());
+  // Models.
+  w.Pod<std::uint32_t>(static_cast<std::uint32_t>(models_.size()));
+  for (const auto& m : models_) {
+    w.String(m.name);
+    w.String(world::CategoryName(m.category));
+    w.String(m.source);
+    w.Pod<std::int32_t>(m.full_entry);
+  }
+  // Entries.
+  w.Pod<std::uint32_t>(static_cast<std::uint32_t>(entries_.size()));
+  for (const auto& e : entries_) {
+    w.Pod<std::uint8_t>(static_cast<std::uint8_t>(e.kind));
+    w.String(world::CategoryName(e.category));
+    w.String(e.name);
+    w.Pod<std::int32_t>(e.model_index);
+    if (e.kind == EntryKind::kFullModel) {
+      w.Points(e.points);
+      w.Points(e.normals);
+    } else {
+      // Components and pairs are subsets of their model's full scan: store indices only.
+      w.Pod<std::uint32_t>(static_cast<std::uint32_t>(e.point_indices.size()));
+      w.Array(e.point_indices.data(), e.point_indices.size());
+    }
+    w.Points(e.keypoints);
+    w.Pod<std::uint32_t>(static_cast<std::uint32_t>(e.bow.size()));
+    for (const auto& b : e.bow) {
+      w.Pod<std::uint32_t>(b.bin);
+      w.Pod<float>(b.value);
+    }
+  }
+  const std::vector<char>& payload = w.buffer();
+
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path tmp = target.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(path + ": cannot write model database");
+    const std::uint32_t version = kFormatVersion;
+    const std::uint64_t size = payload.size();
+    const std::uint64_t checksum = Fnv1a(payload.data(), payload.size());
+    out.write(kMagic, sizeof(kMagic));
+    out.write(reinterpret_cast<const char*>(&version), sizeof(version));
+    out.write(reinterpret_cast<const char*>(&size), sizeof(size));
+    out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
+    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
+    out.flush();
+    if (!out) {
+      out.close();
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(path + ": failed writing model database");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError(path + ": cannot write model database (" + ec.message() + ")");
+  }
+}
+
+ModelDatabase ModelDatabase::Load(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open model database");
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+    throw InputError(path + ": not an objscan model database (bad magic)");
+  if (bytes.size() < kHeaderSize) throw InputError(path + ": truncated model database (header)");
+  std::uint32_t version = 0;
+  std::uint64_t size = 0, checksum = 0;
+  std::memcpy(&version, bytes.data() + 8, 4);
+  std::memcpy(&size, bytes.data() + 12, 8);
+  std::memcpy(&checksum, bytes.data() + 20, 8);
+  if (version != kFormatVersion) {
+    throw InputError(path + ": model database format version " + std::to_string(version) +
+                     ", this objscan reads version " + std::to_string(kFormatVersion) +
+                     " (rebuild it with objscan db build)");
+  }
+  if (bytes.size() - kHeaderSize < size) throw InputError(path + ": truncated model database");
+  if (bytes.size() - kHeaderSize > size) throw InputError(path + ": corrupt model database (trailing bytes)");
+  const char* payload = bytes.data() + kHeaderSize;
+  if (Fnv1a(payload, size) != checksum) throw InputError(path + ": corrupt model database (checksum mismatch)");
+
+  Reader r(payload, size, path);
+  ModelDatabase db;
+  DatabaseSettings& s = db.settings_;
+  s.keypoints.num_keypoints = r.Pod<std::int32_t>("settings");
+  s.keypoints.lloyd_iterations = r.Pod<std::int32_t>("settings");
+  s.keypoints.density_voxel_m = r.Pod<double>("settings");
+  s.keypoints.max_relaxation_points = r.Pod<std::int32_t>("settings");
+  s.keypoint_seed = r.Pod<std::uint64_t>("settings");
+  s.descriptor.type = r.String("settings");
+  s.descriptor.support_radius_m = r.Pod<double>("settings");
+  s.descriptor.normal_radius_m = r.Pod<double>("settings");
+  s.descriptor.surface_voxel_m = r.Pod<double>("settings");
+  s.bow.height_bands = r.Pod<std::int32_t>("settings");
+  s.bow.radial_rings = r.Pod<std::int32_t>("settings");
+  s.bow.spatial_weight = r.Pod<double>("settings");
+  try {
+    s.keypoints.Validate();
+    s.descriptor.Validate();
+    s.bow.Validate();
+  } catch (const ConfigError& e) {
+    r.Fail(std::string("settings: ") + e.what());
+  }
+
+  const auto dim = r.Pod<std::int32_t>("vocabulary");
+  const auto soft = r.Pod<std::int32_t>("vocabulary");
+  const auto sigma2 = r.Pod<float>("vocabulary");
+  const std::uint32_t n_words_floats = r.Count(4, "vocabulary");
+  if (dim <= 0 || n_words_floats == 0 || n_words_floats % dim != 0 || soft < 1 || soft > 8 || !(sigma2 > 0.f))
+    r.Fail("vocabulary");
+  std::vector<float> words(n_words_floats);
+  r.Array(words.data(), words.size(), "vocabulary");
+  db.vocabulary_ = Vocabulary(dim, std::move(words), sigma2, soft);
+  const std::uint32_t num_bins = db.NumBins();
+
+  const std::uint32_t n_models = r.Count(4 + 4 + 4 + 4, "models");
+  db.models_.resize(n_models);
+  for (auto& m : db.models_) {
+    m.name = r.String("model name");
+    m.category = ReadCategory(&r, "model category");
+    m.source = r.String("model source");
+    m.full_entry = r.Pod<std::int32_t>("model");
+  }
+  const std::uint32_t n_entries = r.Count(1 + 4 + 4 + 4 + 4 + 4 + 4, "entries");
+  db.entries_.resize(n_entries);
+  for (std::uint32_t i = 0; i < n_entries; ++i) {
+    DatabaseEntry& e = db.entries_[i];
+    const auto kind = r.Pod<std::uint8_t>("entry kind");
+    if (kind > 2) r.Fail("entry kind");
+    e.kind = static_cast<EntryKind>(kind);
+    e.category = ReadCategory(&r, "entry category");
+    e.name = r.String("entry name");
+    e.model_index = r.Pod<std::int32_t>("entry");
+    if (e.model_index < 0 || e.model_index >= static_cast<std::int32_t>(n_models)) r.Fail("entry model index");
+    if (e.kind == EntryKind::kFullModel) {
+      e.points = r.Points("entry points");
+      e.normals = r.Points("entry normals");
+      if (e.normals.size() != e.points.size()) r.Fail("entry normals");
+    } else {
+      const std::uint32_t n = r.Count(4, "entry point indices");
+      e.point_indices.resize(n);
+      r.Array(e.point_indices.data(), n, "entry point indices");
+    }
+    e.keypoints = r.Points("entry keypoints");
+    const std::uint32_t n_bins = r.Count(8, "entry histogram");
+    e.bow.resize(n_bins);
+    for (auto& b : e.bow) {
+      b.bin = r.Pod<std::uint32_t>("entry histogram");
+      b.value = r.Pod<float>("entry histogram");
+      if (b.bin >= num_bins) r.Fail("histogram bin out of range");
+    }
+  }
+  if (!r.AtEnd()) r.Fail("trailing data");
+  // Resolve models and materialise the points of components and pairs from their model's full scan.
+  for (const auto& m : db.models_) {
+    if (m.full_entry < 0 || m.full_entry >= static_cast<std::int32_t>(n_entries) ||
+        db.entries_[m.full_entry].kind != EntryKind::kFullModel)
+      r.Fail("model full entry");
+  }
+  for (auto& e : db.entries_) {
+    if (e.kind == EntryKind::kFullModel) {
+      for (const auto& p : e.points) e.bounds.Extend(p.cast<double>());
+      continue;
+    }
+    const DatabaseEntry& full = db.entries_[db.models_[e.model_index].full_entry];
+    e.points.resize(e.point_indices.size());
+    e.normals.resize(e.point_indices.size());
+    for (std::size_t k = 0; k < e.point_indices.size(); ++k) {
+      const std::int32_t j = e.point_indices[k];
+      if (j < 0 || j >= static_cast<std::int32_t>(full.points.size())) r.Fail("entry point index");
+      e.points[k] = full.points[j];
+      e.normals[k] = full.normals[j];
+      e.bounds.Extend(full.points[j].cast<double>());
+    }
+  }
+  db.Finalize();
+  return db;
+}
+
+void ModelDatabase::Finalize() {
+  for (auto& e : entries_) {
+    if (e.bounds.Empty()) {
+      for (const auto& p : e.points) e.bounds.Extend(p.cast<double>());
+    }
+  }
+  std::vector<const SparseHistogram*> all_h, full_h;
+  std::vector<int> all_ids, full_ids;
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    all_h.push_back(&entries_[i].bow);
+    all_ids.push_back(static_cast<int>(i));
+    if (entries_[i].kind == EntryKind::kFullModel) {
+      full_h.push_back(&entries_[i].bow);
+      full_ids.push_back(static_cast<int>(i));
+    }
+  }
+  all_index_.Build(all_h, all_ids, NumBins());
+  full_model_index_.Build(full_h, full_ids, NumBins());
+  keypoint_targets_.clear();
+  keypoint_targets_.reserve(entries_.size());
+  for (const auto& e : entries_) keypoint_targets_.emplace_back(e.keypoints);
+  finalized_ = true;
+}
+
+}  // namespace objscan::recognition

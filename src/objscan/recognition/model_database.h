@@ -1,0 +1,103 @@
+#pragma once
+// The 3D model database M (paper §4.2): for every source model its full virtual scan, every
+// pre-segmented component and every pair of adjacent components, all labelled with the model's
+// category, each with keypoints and a spatial bag-of-words histogram; plus the vocabulary and the
+// settings used to describe them (queries must be described the same way). Stored as a versioned
+// little-endian binary file.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "objscan/geometry/aabb.h"
+#include "objscan/recognition/alignment.h"
+#include "objscan/recognition/descriptor.h"
+#include "objscan/recognition/keypoints.h"
+#include "objscan/recognition/retrieval.h"
+#include "objscan/recognition/spatial_bow.h"
+#include "objscan/recognition/vocabulary.h"
+#include "objscan/world/category.h"
+
+namespace objscan::recognition {
+
+enum class EntryKind : std::uint8_t { kFullModel = 0, kComponent = 1, kPair = 2 };
+const char* EntryKindName(EntryKind kind);
+
+// Which entries a query is compared with (paper §6.1): a pre-segmented component against every
+// entry, a post-segmented object against full models only.
+enum class RetrievalScope { kAllEntries, kFullModels };
+
+struct DatabaseEntry {
+  EntryKind kind = EntryKind::kFullModel;
+  world::Category category = world::Category::kOther;
+  std::string name;                        // model name, "+/c<k>" for a component, "+/p<a>-<b>" for a pair
+  std::int32_t model_index = -1;           // into ModelDatabase::models()
+  std::vector<Eigen::Vector3f> points;     // surface points in the model frame (Z up, on z = 0)
+  std::vector<Eigen::Vector3f> normals;    // one per point
+  std::vector<std::int32_t> point_indices; // components and pairs: indices of `points` in the model's full entry
+  std::vector<Eigen::Vector3f> keypoints;  // n_p Lloyd keypoints
+  SparseHistogram bow;
+  geometry::Aabb3 bounds;                  // of `points`: the upright frame of the spatial BoW
+};
+
+struct DatabaseModel {
+  std::string name;
+  world::Category category = world::Category::kOther;
+  std::string source;            // file path or "procedural/<category>/<seed>"
+  std::int32_t full_entry = -1;  // index of its full-model entry
+};
+
+// How the entries were described; a query is described with the same settings.
+struct DatabaseSettings {
+  KeypointOptions keypoints;
+  std::uint64_t keypoint_seed = 1;
+  DescriptorOptions descriptor;
+  SpatialBowOptions bow;
+};
+
+class ModelDatabase {
+ public:
+  static constexpr std::uint32_t kFormatVersion = 1;
+
+  ModelDatabase() = default;
+  ModelDatabase(ModelDatabase&&) = default;
+  ModelDatabase& operator=(ModelDatabase&&) = default;
+
+  // Writes atomically (temporary file, then rename). Throws InputError naming the path on failure.
+  void Save(const std::string& path) const;
+  // Throws InputError naming the path for a missing, foreign, old, corrupt or truncated file.
+  static ModelDatabase Load(const std::string& path);
+
+  DatabaseSettings& mutable_settings() { return settings_; }
+  const DatabaseSettings& settings() const { return settings_; }
+  void set_vocabulary(Vocabulary vocabulary) { vocabulary_ = std::move(vocabulary); }
+  const Vocabulary& vocabulary() const { return vocabulary_; }
+  std::vector<DatabaseModel>& mutable_models() { return models_; }
+  const std::vector<DatabaseModel>& models() const { return models_; }
+  std::vector<DatabaseEntry>& mutable_entries() { return entries_; }
+  const std::vector<DatabaseEntry>& entries() const { return entries_; }
+
+  // Builds the inverted indices and per-entry alignment targets; call after changing entries
+  // (Load calls it).
+  void Finalize();
+  bool finalized() const { return finalized_; }
+  const InvertedIndex& index(RetrievalScope scope) const {
+    return scope == RetrievalScope::kFullModels ? full_model_index_ : all_index_;
+  }
+  // Kd-tree over an entry's keypoints (the target of alignment and of objectness).
+  const AlignmentTarget& keypoint_target(int entry) const { return keypoint_targets_[entry]; }
+
+  std::uint32_t NumBins() const {
+    return static_cast<std::uint32_t>(vocabulary_.num_words() * settings_.bow.NumCells());
+  }
+
+ private:
+  DatabaseSettings settings_;
+  Vocabulary vocabulary_;
+  std::vector<DatabaseModel> models_;
+  std::vector<DatabaseEntry> entries_;
+  bool finalized_ = false;
+  InvertedIndex all_index_, full_model_index_;
+  std::vector<AlignmentTarget> keypoint_targets_;
+};
+
+}  // namespace objscan::recognition

@@ -1,0 +1,30 @@
+#include "objscan/scanning/system_config.h"
+
+#include <cstdlib>
+
+namespace objscan::scanning {
+
+SystemConfig LoadSystemConfig(const std::string& config_file, const std::vector<std::string>& overrides) {
+  config::RawConfig raw;
+  if (!config_file.empty()) raw = config::RawConfig::FromYamlFile(config_file);
+  for (const auto& assignment : overrides) raw.SetFromAssignment(assignment);
+  SystemConfig config;
+  config::Apply(raw, &config);
+  return config;
+}
+
+std::string ToYaml(const SystemConfig& config) {
+  return "# objscan default configuration (paper defaults). Generated from the options structs by\n"
+         "# scripts/update_default_config.sh; a test keeps it equal to the code. Copy it, edit it and pass\n"
+         "# it with --config F.yaml, or override single keys with --set section.key=value.\n\n" +
+         config::ToYaml(config::Dump(config));
+}
+
+std::string ToJson(const SystemConfig& config, int indent) { return config::ToJson(config::Dump(config), indent); }
+
+std::string ConfigDir() {
+  if (const char* env = std::getenv("OBJSCAN_CONFIG_DIR")) return env;
+  return OBJSCAN_CONFIG_DIR_DEFAULT;
+}
+
+}  // namespace objscan::scanning

@@ -1,0 +1,31 @@
+#pragma once
+// Small analytic scenes shared by the sim tests (test-only, header-only).
+#include "objscan/geometry/mesh.h"
+#include "objscan/world/scene.h"
+
+namespace objscan::sim::testing {
+
+inline world::SceneObject BoxObject(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                    world::Category category = world::Category::kCabinet) {
+  world::SceneObject o;
+  o.category = category;
+  o.mesh = geometry::MakeBox(lo, hi);
+  return o;
+}
+
+// A closed room [0, size_x] x [0, size_y] with a floor and 0.1 m thick, 2.5 m high walls outside it.
+inline world::Scene Room(double size_x, double size_y) {
+  world::Scene scene("room");
+  world::SceneObject floor;
+  floor.category = world::Category::kFloor;
+  floor.mesh = geometry::MakeQuadXY(-0.1, -0.1, size_x + 0.1, size_y + 0.1);
+  scene.Add(floor);
+  const double t = 0.1, h = 2.5;
+  scene.Add(BoxObject({-t, -t, 0}, {size_x + t, 0, h}, world::Category::kWall));
+  scene.Add(BoxObject({-t, size_y, 0}, {size_x + t, size_y + t, h}, world::Category::kWall));
+  scene.Add(BoxObject({-t, 0, 0}, {0, size_y, h}, world::Category::kWall));
+  scene.Add(BoxObject({size_x, 0, 0}, {size_x + t, size_y, h}, world::Category::kWall));
+  return scene;
+}
+
+}  // namespace objscan::sim::testing
