@@ -68,6 +68,7 @@ void BM_NextBestView(benchmark::State& state) {
   input.occluder_points_world = &floor;
   objscan::planning::NextBestViewOptions options;
   options.voxel_size_m = state.range(0) / 1000.0;
+  options.threads = static_cast<int>(state.range(1));
   objscan::planning::NextBestView nbv(options);
   int delta_voxels = 0;
   for (auto _ : state) {
@@ -78,7 +79,14 @@ void BM_NextBestView(benchmark::State& state) {
   state.counters["delta_voxels"] = delta_voxels;
   state.counters["candidates"] = options.candidates.num_candidates;
 }
-BENCHMARK(BM_NextBestView)->Arg(20)->Arg(25)->Arg(30)->Unit(benchmark::kMillisecond);
+// Arguments: voxel size in mm, threads.
+BENCHMARK(BM_NextBestView)
+    ->Args({20, 1})
+    ->Args({25, 1})
+    ->Args({30, 1})
+    ->Args({25, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_NextBestObject(benchmark::State& state) {
   objscan::Rng rng(3);

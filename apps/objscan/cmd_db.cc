@@ -1,28 +1,161 @@
-// `objscan db`: Build, inspect and evaluate the 3D model database
-// The command line is fixed by DESIGN.md; the work arrives with issue #5.
+// `objscan db`: build, inspect and evaluate the 3D model database (paper §4.2).
+//   objscan db build --models DIR|procedural --out F.db   -> JSON summary on stdout
+//   objscan db info F.db                                  -> JSON counts per category
+//   objscan db eval --db F.db [--queries procedural]      -> JSON accuracy, objectness, timing
 #include <cstdio>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
+#include "cli_util.h"
 #include "commands.h"
+#include "objscan/common/config.h"
+#include "objscan/common/error.h"
+#include "objscan/common/timer.h"
+#include "objscan/recognition/database_builder.h"
+#include "objscan/recognition/database_eval.h"
+#include "objscan/recognition/model_database.h"
 
 namespace objscan::app {
+namespace {
+
+struct DbArgs {
+  std::string models;
+  std::string out;
+  std::string info_db;
+  std::string eval_db;
+  std::string queries = "procedural";
+  int variants = 8;
+  int queries_per_category = 5;
+  int threads = 0;
+  std::uint64_t seed = 1;
+  std::vector<std::string> sets;
+};
+
+template <class Options>
+void ApplySets(const std::vector<std::string>& sets, Options* options) {
+  config::RawConfig raw;
+  for (const auto& s : sets) raw.SetFromAssignment(s);
+  config::Apply(raw, options);
+}
+
+int RunBuild(const DbArgs& a) {
+  recognition::DatabaseBuildOptions options;
+  options.threads = a.threads;
+  options.seed = a.seed;
+  ApplySets(a.sets, &options);
+  std::vector<recognition::ModelSource> sources;
+  std::vector<std::string> skipped;
+  if (a.models == "procedural") {
+    if (a.variants < 1) throw InputError("--variants must be at least 1");
+    sources = recognition::ProceduralModelSources(a.variants);
+  } else {
+    sources = recognition::ModelSourcesFromFolder(a.models, &skipped);
+  }
+  const Stopwatch watch;
+  const recognition::ModelDatabase db =
+      recognition::BuildDatabase(sources, options, TerminalProgress("db build"));
+  FinishProgress();
+  db.Save(a.out);
+  nlohmann::json j;
+  j["out"] = a.out;
+  j["models"] = db.models().size();
+  j["entries"] = db.entries().size();
+  j["models_without_points"] = sources.size() - db.models().size();
+  j["skipped_folders"] = skipped;
+  j["seconds"] = watch.ElapsedSeconds();
+  std::printf("%s\n", j.dump(2).c_str());
+  return 0;
+}
+
+int RunInfo(const DbArgs& a) {
+  const Stopwatch watch;
+  const recognition::ModelDatabase db = recognition::ModelDatabase::Load(a.info_db);
+  const double load_ms = watch.ElapsedMs();
+  std::map<std::string, std::map<std::string, int>> counts;
+  for (const auto& e : db.entries()) {
+    auto& c = counts[world::CategoryName(e.category)];
+    c["models"] += e.kind == recognition::EntryKind::kFullModel ? 1 : 0;
+    c["components"] += e.kind == recognition::EntryKind::kComponent ? 1 : 0;
+    c["pairs"] += e.kind == recognition::EntryKind::kPair ? 1 : 0;
+  }
+  nlohmann::json j;
+  j["file"] = a.info_db;
+  j["format_version"] = recognition::ModelDatabase::kFormatVersion;
+  j["models"] = db.models().size();
+  j["entries"] = db.entries().size();
+  j["categories"] = counts;
+  j["vocabulary_words"] = db.vocabulary().num_words();
+  j["keypoints_per_entry"] = db.settings().keypoints.num_keypoints;
+  j["descriptor"] = db.settings().descriptor.type;
+  j["load_ms"] = load_ms;
+  std::printf("%s\n", j.dump(2).c_str());
+  return 0;
+}
+
+int RunEval(const DbArgs& a) {
+  if (a.queries != "procedural") throw InputError("--queries '" + a.queries + "': only 'procedural' is supported");
+  recognition::DatabaseEvalOptions options;
+  options.queries_per_category = a.queries_per_category;
+  options.threads = a.threads;
+  ApplySets(a.sets, &options);
+  const recognition::ModelDatabase db = recognition::ModelDatabase::Load(a.eval_db);
+  const recognition::DatabaseEvalResult r =
+      recognition::EvaluateDatabase(db, options, TerminalProgress("db eval"));
+  FinishProgress();
+  nlohmann::json j;
+  j["top1_category_accuracy"] = r.top1_category_accuracy;
+  j["top5_category_accuracy"] = r.top5_category_accuracy;
+  j["objectness_complete_mean"] = r.objectness_complete_mean;
+  j["objectness_partial_mean"] = r.objectness_partial_mean;
+  j["ms_per_query"] = r.ms_per_query;
+  nlohmann::json by_views = nlohmann::json::array();
+  for (const auto& v : r.by_views) {
+    by_views.push_back({{"views", v.views},
+                        {"queries", v.queries},
+                        {"top1_category_accuracy", v.top1_category_accuracy},
+                        {"top5_category_accuracy", v.top5_category_accuracy}});
+  }
+  j["by_views"] = by_views;
+  j["objectness_models"] = r.objectness_models;
+  std::map<std::string, std::map<std::string, int>> confusion;  // single views: truth -> predicted
+  for (const auto& q : r.queries) {
+    if (q.views == 1) ++confusion[world::CategoryName(q.truth)][world::CategoryName(q.predicted)];
+  }
+  j["single_view_confusion"] = confusion;
+  std::printf("%s\n", j.dump(2).c_str());
+  return 0;
+}
+
+}  // namespace
 
 void AddDbCommand(CLI::App& root, RunFn* run) {
+  auto args = std::make_shared<DbArgs>();
   auto* cmd = root.add_subcommand("db", "Build, inspect and evaluate the 3D model database");
   auto* build = cmd->add_subcommand("build", "Build a model database from a folder of models or procedurally");
-  build->add_option("--models", "DIR of <category>/<name>.{obj,off,ply,dae,stl,glb}, or 'procedural'")->required();
-  build->add_option("--out", "output database file F.db")->required();
+  build->add_option("--models", args->models, "DIR of <category>/<name>.{obj,off,ply,dae,stl,glb}, or 'procedural'")
+      ->required();
+  build->add_option("--out", args->out, "output database file F.db")->required();
+  build->add_option("--variants", args->variants, "procedural models per category")->default_str("8");
+  build->add_option("--threads", args->threads, "models scanned in parallel (0 = all cores; same result)")
+      ->default_str("0");
+  build->add_option("--seed", args->seed, "seed of the vocabulary (and of scan noise when on)")->default_str("1");
+  build->add_option("--set", args->sets, "override a build option, e.g. descriptor.support_radius_m=0.12");
   auto* info = cmd->add_subcommand("info", "Print counts of models, components and pairs per category as JSON");
-  info->add_option("db", "database file")->required();
+  info->add_option("db", args->info_db, "database file")->required();
   auto* eval = cmd->add_subcommand("eval", "Evaluate retrieval accuracy and objectness on unseen models");
-  eval->add_option("--db", "database file")->required();
-  eval->add_option("--queries", "query source (procedural)");
+  eval->add_option("--db", args->eval_db, "database file")->required();
+  eval->add_option("--queries", args->queries, "query source (procedural)")->default_str("procedural");
+  eval->add_option("--queries-per-category", args->queries_per_category, "unseen models per category")
+      ->default_str("5");
+  eval->add_option("--threads", args->threads, "queries run in parallel (0 = all cores)")->default_str("0");
+  eval->add_option("--set", args->sets, "override an eval option, e.g. recognition.shortlist_size=30");
   cmd->require_subcommand(1);
-  cmd->callback([run] {
-    *run = [] {
-      std::fprintf(stderr, "objscan db: not available in this build yet (issue #5)\n");
-      return 3;
-    };
-  });
+  build->callback([run, args] { *run = [args] { return RunBuild(*args); }; });
+  info->callback([run, args] { *run = [args] { return RunInfo(*args); }; });
+  eval->callback([run, args] { *run = [args] { return RunEval(*args); }; });
 }
 
 }  // namespace objscan::app

@@ -8,11 +8,12 @@
 
 #include "objscan/common/config.h"
 #include "objscan/common/error.h"
+#include "objscan/segmentation/segmentation_quality.h"
 
 namespace objscan::eval {
 
 int MajorityInstance(const std::vector<int>& point_instances) {
-  if (point_instances.empty()) return -1;
+  if (point_instances.empty()) return world::kNoInstance;
   std::vector<int> sorted = point_instances;
   std::sort(sorted.begin(), sorted.end());
   int best = sorted.front();
@@ -74,41 +75,8 @@ RecognitionResult MatchRecognitions(const std::vector<GroundTruthInstance>& grou
   return result;
 }
 
-double RandIndex(const std::vector<int>& segmentation_a, const std::vector<int>& segmentation_b) {
-  if (segmentation_a.size() != segmentation_b.size()) {
-    throw InputError("RandIndex: segmentations have " + std::to_string(segmentation_a.size()) + " and " +
-                     std::to_string(segmentation_b.size()) + " points");
-  }
-  const std::size_t n = segmentation_a.size();
-  if (n < 2) return 1.0;
-  // Pairs together in both = sum over contingency cells of C(n_ij, 2); together in A = sum over rows
-  // of C(a_i, 2); together in B likewise. Agreements = all pairs - (together in A only) - (in B only).
-  auto pairs = [](double k) { return k * (k - 1.0) / 2.0; };
-  auto sum_pairs_of_runs = [&](std::vector<std::pair<int, int>>& keys) {
-    std::sort(keys.begin(), keys.end());
-    double sum = 0.0;
-    for (std::size_t i = 0; i < keys.size();) {
-      std::size_t j = i;
-      while (j < keys.size() && keys[j] == keys[i]) ++j;
-      sum += pairs(static_cast<double>(j - i));
-      i = j;
-    }
-    return sum;
-  };
-  std::vector<std::pair<int, int>> cells(n), rows(n), cols(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    cells[i] = {segmentation_a[i], segmentation_b[i]};
-    rows[i] = {segmentation_a[i], 0};
-    cols[i] = {segmentation_b[i], 0};
-  }
-  const double both = sum_pairs_of_runs(cells);
-  const double in_a = sum_pairs_of_runs(rows);
-  const double in_b = sum_pairs_of_runs(cols);
-  const double total = pairs(static_cast<double>(n));
-  return (total - (in_a - both) - (in_b - both)) / total;
-}
-
-double NonStructuralRandIndex(const std::vector<int>& point_segment, const std::vector<int>& point_instance,
+double NonStructuralRandIndex(const std::vector<std::int32_t>& point_segment,
+                              const std::vector<std::int32_t>& point_instance,
                               const std::vector<GroundTruthInstance>& ground_truth) {
   if (point_segment.size() != point_instance.size()) {
     throw InputError("NonStructuralRandIndex: " + std::to_string(point_segment.size()) + " segment ids for " +
@@ -118,14 +86,14 @@ double NonStructuralRandIndex(const std::vector<int>& point_segment, const std::
   for (const GroundTruthInstance& g : ground_truth) {
     if (!world::IsStructural(g.category)) object_instances.insert(g.instance_id);
   }
-  std::vector<int> kept_segment;
-  std::vector<int> kept_instance;
+  std::vector<std::int32_t> kept_segment;
+  std::vector<std::int32_t> kept_instance;
   for (std::size_t i = 0; i < point_segment.size(); ++i) {
     if (!object_instances.count(point_instance[i])) continue;
     kept_segment.push_back(point_segment[i]);
     kept_instance.push_back(point_instance[i]);
   }
-  return RandIndex(kept_segment, kept_instance);
+  return segmentation::RandIndex(kept_segment, kept_instance);
 }
 
 void CoverageOptions::Validate() const {
@@ -152,7 +120,8 @@ double ViewQuality(const SurfaceVoxel& voxel, const Eigen::Vector3d& camera_posi
   const double n_norm = voxel.normal_world.norm();
   // Angle between the normal line and the line of sight, in [0, pi/2]: normals of voxels need not be
   // oriented, and a voxel seen at all is seen from its front.
-  const double cos_theta = n_norm > 0.0 ? std::min(1.0, std::abs(voxel.normal_world.dot(to_camera)) / (n_norm * d)) : 1.0;
+  const double cos_theta =
+      n_norm > 0.0 ? std::min(1.0, std::abs(voxel.normal_world.dot(to_camera)) / (n_norm * d)) : 1.0;
   const double theta = std::acos(cos_theta);
   const double s2 = options.sigma * options.sigma;
   const double d_t = options.max_range_m;

@@ -8,9 +8,11 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "objscan/world/category.h"
+#include "objscan/world/scene.h"
 
 namespace objscan::eval {
 
@@ -19,7 +21,7 @@ namespace objscan::eval {
 
 // One ground-truth object of the scene.
 struct GroundTruthInstance {
-  int instance_id = -1;
+  int instance_id = world::kNoInstance;
   world::Category category = world::Category::kOther;
   bool on_floor = false;  // standing on the floor (the paper's "ground objects")
 };
@@ -27,13 +29,13 @@ struct GroundTruthInstance {
 // One recognized output object.
 struct OutputObject {
   world::Category category = world::Category::kOther;
-  // The ground-truth instance holding most of the object's points (see MajorityInstance), -1 when
-  // none does (e.g. the points are unlabelled background).
-  int majority_instance = -1;
+  // The ground-truth instance holding most of the object's points (see MajorityInstance);
+  // world::kNoInstance (or any id not in the ground truth) when that is unlabelled background.
+  int majority_instance = world::kNoInstance;
 };
 
-// The most frequent value of `point_instances` (ties: the smallest id); -1 values (no instance) take
-// part in the vote like any id. -1 for an empty list.
+// The most frequent value of `point_instances` (ties: the smallest id); world::kNoInstance values
+// (background) take part in the vote like any id. world::kNoInstance for an empty list.
 int MajorityInstance(const std::vector<int>& point_instances);
 
 struct RecognitionCounts {
@@ -66,15 +68,15 @@ RecognitionResult MatchRecognitions(const std::vector<GroundTruthInstance>& grou
 // ---------------------------------------------------------------------------------------------------
 // Segmentation: Rand Index
 
-// RI(S1, S2) = (number of point pairs on which S1 and S2 agree: same segment in both or different in
-// both) / C(n, 2), computed from the contingency table in O(n log n). 1 for n < 2. Throws InputError
-// when the sizes differ.
-double RandIndex(const std::vector<int>& segmentation_a, const std::vector<int>& segmentation_b);
+// The Rand Index itself is segmentation::RandIndex (segmentation_quality.h): RI(S1, S2) = share of
+// the C(n, 2) point pairs on which S1 and S2 agree, from the contingency table.
 
 // Rand Index of a reconstruction's segmentation (segment id per point) against ground truth (instance
 // id per point) over the points whose instance is a non-structural ground-truth object; points of
-// floors, walls and unlisted instances (e.g. -1) are left out.
-double NonStructuralRandIndex(const std::vector<int>& point_segment, const std::vector<int>& point_instance,
+// floors, walls and unlisted instances (e.g. world::kNoInstance) are left out. Throws InputError when
+// the sizes differ.
+double NonStructuralRandIndex(const std::vector<std::int32_t>& point_segment,
+                              const std::vector<std::int32_t>& point_instance,
                               const std::vector<GroundTruthInstance>& ground_truth);
 
 // ---------------------------------------------------------------------------------------------------
@@ -100,7 +102,7 @@ struct CoverageOptions {
 struct SurfaceVoxel {
   Eigen::Vector3d center_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal_world = Eigen::Vector3d::UnitZ();  // unit; its sign does not matter
-  int instance = -1;                                         // owning ground-truth instance
+  int instance = world::kNoInstance;                         // owning ground-truth instance
 };
 
 // q(v) = exp(-theta^2 / (sigma^2 theta_t)) * exp(-(d - d_min)^2 / (sigma^2 d_t)) for one camera:

@@ -14,7 +14,7 @@ namespace {
 using world::Category;
 
 // RI by the definition: every pair i < j, agreement when C_ij == P_ij.
-double BruteForceRandIndex(const std::vector<int>& a, const std::vector<int>& b) {
+double BruteForceRandIndex(const std::vector<std::int32_t>& a, const std::vector<std::int32_t>& b) {
   const std::size_t n = a.size();
   if (n < 2) return 1.0;
   double agree = 0.0;
@@ -30,49 +30,52 @@ double BruteForceRandIndex(const std::vector<int>& a, const std::vector<int>& b)
 
 TEST(RandIndexTest, HandComputedExample) {
   // Pairs of {0,0,1,1} vs {0,0,0,1}: (1,2) agree, (1,3) no, (1,4) agree, (2,3) no, (2,4) agree,
-  // (3,4) no: 3 of 6.
-  EXPECT_DOUBLE_EQ(RandIndex({0, 0, 1, 1}, {0, 0, 0, 1}), 0.5);
+  // (3,4) no: 3 of 6. (Through NonStructuralRandIndex, every point on one listed object instance.)
+  const std::vector<GroundTruthInstance> gt = {{1, Category::kChair, true}, {2, Category::kTable, true}};
+  EXPECT_DOUBLE_EQ(NonStructuralRandIndex({0, 0, 1, 1}, {1, 1, 1, 2}, gt), 0.5);
   // Identical partitions under renaming: 1. All-in-one vs all-apart: 0.
-  EXPECT_DOUBLE_EQ(RandIndex({5, 5, 7, 9}, {1, 1, 2, 3}), 1.0);
-  EXPECT_DOUBLE_EQ(RandIndex({0, 0, 0}, {1, 2, 3}), 0.0);
-  EXPECT_DOUBLE_EQ(RandIndex({}, {}), 1.0);
-  EXPECT_DOUBLE_EQ(RandIndex({4}, {2}), 1.0);
-  EXPECT_THROW(RandIndex({0, 1}, {0}), InputError);
+  EXPECT_DOUBLE_EQ(NonStructuralRandIndex({5, 5, 7}, {1, 1, 2}, gt), 1.0);
+  EXPECT_DOUBLE_EQ(NonStructuralRandIndex({0, 0}, {1, 2}, gt), 0.0);
+  EXPECT_DOUBLE_EQ(NonStructuralRandIndex({}, {}, gt), 1.0);
+  EXPECT_DOUBLE_EQ(NonStructuralRandIndex({4}, {2}, gt), 1.0);
+  EXPECT_THROW(NonStructuralRandIndex({0, 1}, {0}, gt), InputError);
 }
 
 TEST(RandIndexTest, MatchesPairCountingOnRandomLabelings) {
   Rng rng(42);
+  std::vector<GroundTruthInstance> gt;
+  for (int id = 1; id <= 7; ++id) gt.push_back({id, Category::kChair, true});
   for (int trial = 0; trial < 50; ++trial) {
     const int n = rng.UniformInt(0, 60);
     const int ka = rng.UniformInt(1, 6);
     const int kb = rng.UniformInt(1, 6);
-    std::vector<int> a(static_cast<std::size_t>(n));
-    std::vector<int> b(static_cast<std::size_t>(n));
+    std::vector<std::int32_t> a(static_cast<std::size_t>(n));
+    std::vector<std::int32_t> b(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) {
       a[static_cast<std::size_t>(i)] = rng.UniformInt(-1, ka);
-      b[static_cast<std::size_t>(i)] = rng.UniformInt(-1, kb);
+      b[static_cast<std::size_t>(i)] = rng.UniformInt(1, kb + 1);
     }
-    EXPECT_NEAR(RandIndex(a, b), BruteForceRandIndex(a, b), 1e-12) << "trial " << trial;
+    EXPECT_NEAR(NonStructuralRandIndex(a, b, gt), BruteForceRandIndex(a, b), 1e-12) << "trial " << trial;
   }
 }
 
 TEST(RandIndexTest, NonStructuralPointsOnly) {
   const std::vector<GroundTruthInstance> gt = {
       {1, Category::kChair, true}, {2, Category::kTable, true}, {3, Category::kFloor, false}};
-  // Points: chair x2, table x2, floor x2, unlabelled x1. The floor and unlabelled points are merged into
+  // Points: chair x2, table x2, floor x2, background (kNoInstance) x1. The floor and unlabelled points are merged into
   // the chair's segment, which must not count; on the kept four points the segmentation {0,0,1,1} is
   // exact.
-  const std::vector<int> segment = {0, 0, 1, 1, 0, 0, 0};
-  const std::vector<int> instance = {1, 1, 2, 2, 3, 3, -1};
+  const std::vector<std::int32_t> segment = {0, 0, 1, 1, 0, 0, 0};
+  const std::vector<std::int32_t> instance = {1, 1, 2, 2, 3, 3, world::kNoInstance};
   EXPECT_DOUBLE_EQ(NonStructuralRandIndex(segment, instance, gt), 1.0);
   // Table split in two: pairs (3,4) disagree -> 5 of 6.
   EXPECT_DOUBLE_EQ(NonStructuralRandIndex({0, 0, 1, 2, 0, 0, 0}, instance, gt), 5.0 / 6.0);
 }
 
 TEST(RecognitionTest, MajorityInstance) {
-  EXPECT_EQ(MajorityInstance({}), -1);
-  EXPECT_EQ(MajorityInstance({3, 3, 2, -1, 3}), 3);
-  EXPECT_EQ(MajorityInstance({-1, -1, 4}), -1);
+  EXPECT_EQ(MajorityInstance({}), world::kNoInstance);
+  EXPECT_EQ(MajorityInstance({3, 3, 2, 0, 3}), 3);
+  EXPECT_EQ(MajorityInstance({0, 0, 4}), 0);
   EXPECT_EQ(MajorityInstance({5, 4, 5, 4}), 4);  // tie: smaller id
 }
 
@@ -89,7 +92,7 @@ TEST(RecognitionTest, RecallPrecisionWithDuplicateDetection) {
       {Category::kChair, 1},    // duplicate of instance 1: FP
       {Category::kMonitor, 3},  // TP
       {Category::kTable, 2},    // wrong category: FP
-      {Category::kLamp, -1},    // background: FP
+      {Category::kLamp, world::kNoInstance},  // background: FP
       {Category::kTable, 6},    // TP
       {Category::kOther, 5},    // instance outside the set: FP
   };

@@ -119,7 +119,7 @@ class WorldLoader {
       }
     }
 
-    world::Scene scene(fs::path(path_).parent_path().filename().string() + "/" + fs::path(path_).filename().string());
+    world::Scene scene(path_);
     std::vector<world::SceneObject> objects;
     double plane_z_m = 0.0;
     std::set<std::string> seen_names;
@@ -297,7 +297,8 @@ class WorldLoader {
   const geometry::TriangleMesh* MeshFor(const std::string& uri, const std::string& where, const std::string& model) {
     const std::optional<std::string> resolved = ResolveModelUri(uri, world_dir_, search_path_);
     if (!resolved) {
-      const std::string message = where + ": cannot resolve " + uri;
+      const std::string message = where + ": cannot resolve " + uri +
+                                  " (searched the world's folder, the model path, $OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH)";
       if (!options_.allow_missing) throw InputError(message);
       missing_.push_back(uri + " (model '" + model + "')");
       return nullptr;

@@ -113,6 +113,8 @@ geometry::TriangleMesh LoadMesh(const std::string& path, const MeshLoadOptions& 
   if (scene == nullptr || scene->mRootNode == nullptr) {
     std::string reason = importer.GetErrorString();
     std::replace(reason.begin(), reason.end(), '\n', ' ');
+    // Assimp rejects files whose every mesh was dropped (no faces, only points/lines).
+    if (reason.find("No meshes") != std::string::npos) throw InputError(path + ": mesh has no triangles");
     throw InputError(path + ": cannot read mesh (" + (reason.empty() ? std::string("unknown error") : reason) + ")");
   }
 

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "objscan/common/error.h"
+
 namespace objscan::io::testing {
 
 // A temporary folder removed at the end of the test.

@@ -136,6 +136,30 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
     }
   }
 
+  {
+    // Thin wall panels (1 cm) would be a hairline: thicken them by one output pixel on each side,
+    // over the floor only.
+    const int r = ss;
+    std::vector<std::int32_t> owner = raster.owner;
+    for (int y = 0; y < raster.height; ++y) {
+      for (int x = 0; x < raster.width; ++x) {
+        const std::int32_t o = owner[static_cast<std::size_t>(y) * raster.width + x];
+        if (o < 0 || scene.objects()[o].category != world::Category::kWall) continue;
+        const Rgb wall = map_canvas.Pixel(x, y);
+        for (int dy = -r; dy <= r; ++dy) {
+          for (int dx = -r; dx <= r; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            if (xx < 0 || yy < 0 || xx >= raster.width || yy >= raster.height) continue;
+            const std::size_t j = static_cast<std::size_t>(yy) * raster.width + xx;
+            const std::int32_t oj = raster.owner[j];
+            if (oj >= 0 && LayerOf(scene.objects()[oj].category) > 0) continue;
+            raster.owner[j] = o;
+            map_canvas.SetPixel(xx, yy, wall);
+          }
+        }
+      }
+    }
+  }
   if (options.outlines) {
     // Darken both sides of every boundary that involves a piece of furniture.
     const auto is_furniture = [&](std::int32_t owner) {

@@ -51,6 +51,8 @@ std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const Oc
   auto unexplored = [&](int ix, int iy) {
     if (observed(ix, iy)) return false;
     const Eigen::Vector2d c = center(ix, iy);
+    // Cells beyond a wall plane are outside the room: nothing to explore there.
+    if (!structure.InsideWalls(Eigen::Vector3d(c.x(), c.y(), probe_z), 0.0)) return false;
     return occupancy.Query(Eigen::Vector3d(c.x(), c.y(), probe_z)) == Occupancy::kUnknown;
   };
 
@@ -61,6 +63,9 @@ std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const Oc
       if (!observed(ix, iy)) continue;
       const Eigen::Vector2d c = center(ix, iy);
       if (!structure.InsideWalls(Eigen::Vector3d(c.x(), c.y(), probe_z), options.wall_margin_m)) continue;
+      // An obstacle surface right above this cell (e.g. the side of furniture falling into this
+      // cell's voxel) hides what lies beyond: its unknown interior is no frontier.
+      if (occupancy.Query(Eigen::Vector3d(c.x(), c.y(), probe_z)) == Occupancy::kOccupied) continue;
       for (const auto& d : kN4) {
         if (unexplored(ix + d[0], iy + d[1])) {
           frontier[idx(ix, iy)] = 1;

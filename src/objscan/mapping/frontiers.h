@@ -35,8 +35,9 @@ struct FrontierGoal {
 };
 
 // A floor cell is observed when it holds enough floor-tagged elements; a neighbour (4-connected) is
-// unexplored when it is not observed floor and the occupancy just above the floor there is unknown
-// (occupied means an obstacle such as a wall or furniture; free means rays passed over it).
+// unexplored when it is not observed floor, its centre is not beyond a detected wall, and the
+// occupancy just above the floor there is unknown (occupied means an obstacle such as a wall or
+// furniture; free means rays passed over it).
 // Frontier cells are clustered 8-connected; goals are sorted by size, largest first.
 std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const OccupancyMap& occupancy,
                                              const StructureResult& structure, const FrontierOptions& options);

@@ -20,26 +20,6 @@ void OccupancyMapOptions::Validate() const {
   config::RequireNonNegative("view_clearance_m", view_clearance_m);
 }
 
-void NavigationGridOptions::Validate() const {
-  config::RequireNonNegative("floor_clearance_m", floor_clearance_m);
-  config::Require(robot_height_m > floor_clearance_m, "robot_height_m", "must exceed floor_clearance_m");
-}
-
-void NavigationGrid::CellOf(const Eigen::Vector2d& p, int* ix, int* iy) const {
-  *ix = static_cast<int>(std::floor((p.x() - origin_m.x()) / resolution_m));
-  *iy = static_cast<int>(std::floor((p.y() - origin_m.y()) / resolution_m));
-}
-
-Eigen::Vector2d NavigationGrid::CenterOf(int ix, int iy) const {
-  return origin_m + resolution_m * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-}
-
-bool NavigationGrid::IsFree(const Eigen::Vector2d& p) const {
-  int ix, iy;
-  CellOf(p, &ix, &iy);
-  return InBounds(ix, iy) && At(ix, iy) == kFree;
-}
-
 struct OccupancyMap::Impl {
   explicit Impl(double resolution) : tree(resolution) {}
   octomap::OcTree tree;
@@ -137,30 +117,32 @@ geometry::Aabb3 OccupancyMap::KnownBounds() const {
   return box;
 }
 
-NavigationGrid OccupancyMap::ToNavigationGrid(const NavigationGridOptions& options,
-                                              const geometry::Aabb3& bounds) const {
-  options.Validate();
-  NavigationGrid grid;
-  const double res = options_.resolution_m;
-  grid.resolution_m = res;
-  const geometry::Aabb3 box = bounds.Empty() ? KnownBounds() : bounds;
-  if (box.Empty()) return grid;
-  grid.origin_m = Eigen::Vector2d(std::floor(box.min_m.x() / res) * res, std::floor(box.min_m.y() / res) * res);
-  grid.width = std::max(1, static_cast<int>(std::ceil((box.max_m.x() - grid.origin_m.x()) / res)));
-  grid.height = std::max(1, static_cast<int>(std::ceil((box.max_m.y() - grid.origin_m.y()) / res)));
-  grid.cells.assign(static_cast<std::size_t>(grid.width) * grid.height, NavigationGrid::kUnknown);
+sim::OccupancyGrid2D OccupancyMap::Grid(double min_z_m, double max_z_m, double cell_size_m) const {
+  return GridOver(KnownBounds(), min_z_m, max_z_m, cell_size_m);
+}
 
+sim::OccupancyGrid2D OccupancyMap::GridOver(const geometry::Aabb3& box, double min_z_m, double max_z_m,
+                                            double cell_size_m) const {
+  if (!(cell_size_m > 0.0)) throw InputError("OccupancyMap::Grid: cell_size_m must be positive");
+  if (box.Empty()) {
+    return sim::OccupancyGrid2D::Covering(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), cell_size_m,
+                                          sim::CellState::kUnknown);
+  }
+  // Cells aligned to multiples of the cell size, so they line up with the voxels.
+  const Eigen::Vector2d min_xy = (box.min_m.head<2>() / cell_size_m).array().floor() * cell_size_m;
+  sim::OccupancyGrid2D grid =
+      sim::OccupancyGrid2D::Covering(min_xy, box.max_m.head<2>(), cell_size_m, sim::CellState::kUnknown);
+  const double res = cell_size_m;
   const octomap::OcTree& tree = impl_->tree;
-  const double z_lo = options.floor_height_m + options.floor_clearance_m;
-  const double z_hi = options.floor_height_m + options.robot_height_m;
-  const octomap::point3d bbx_min(grid.origin_m.x(), grid.origin_m.y(), z_lo);
-  const octomap::point3d bbx_max(grid.origin_m.x() + grid.width * res, grid.origin_m.y() + grid.height * res, z_hi);
+  const octomap::point3d bbx_min(grid.origin_m.x(), grid.origin_m.y(), min_z_m);
+  const octomap::point3d bbx_max(grid.origin_m.x() + grid.width * res, grid.origin_m.y() + grid.height * res, max_z_m);
   std::vector<std::uint8_t> known(grid.cells.size(), 0), occupied(grid.cells.size(), 0);
+  const double voxel = options_.resolution_m;
   for (auto it = tree.begin_leafs_bbx(bbx_min, bbx_max), end = tree.end_leafs_bbx(); it != end; ++it) {
     const octomap::point3d c = it.getCoordinate();
     const double half = 0.5 * it.getSize();
-    // Leaves whose centre lies outside the height band only graze it.
-    if (c.z() < z_lo - 0.5 * res || c.z() > z_hi + 0.5 * res) continue;
+    // Leaves whose centre lies outside the band only graze it.
+    if (c.z() < min_z_m - 0.5 * voxel || c.z() > max_z_m + 0.5 * voxel) continue;
     const bool occ = tree.isNodeOccupied(*it);
     const int ix0 = std::max(0, static_cast<int>(std::floor((c.x() - half - grid.origin_m.x()) / res + 1e-6)));
     const int iy0 = std::max(0, static_cast<int>(std::floor((c.y() - half - grid.origin_m.y()) / res + 1e-6)));
@@ -168,14 +150,14 @@ NavigationGrid OccupancyMap::ToNavigationGrid(const NavigationGridOptions& optio
     const int iy1 = std::min(grid.height - 1, static_cast<int>(std::ceil((c.y() + half - grid.origin_m.y()) / res - 1e-6)) - 1);
     for (int iy = iy0; iy <= iy1; ++iy) {
       for (int ix = ix0; ix <= ix1; ++ix) {
-        const std::size_t k = static_cast<std::size_t>(iy) * grid.width + ix;
+        const std::size_t k = grid.Index(ix, iy);
         known[k] = 1;
         if (occ) occupied[k] = 1;
       }
     }
   }
   for (std::size_t k = 0; k < grid.cells.size(); ++k) {
-    grid.cells[k] = occupied[k] ? NavigationGrid::kObstacle : (known[k] ? NavigationGrid::kFree : NavigationGrid::kUnknown);
+    grid.cells[k] = occupied[k] ? sim::CellState::kOccupied : (known[k] ? sim::CellState::kFree : sim::CellState::kUnknown);
   }
   return grid;
 }

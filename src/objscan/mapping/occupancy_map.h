@@ -10,6 +10,7 @@
 #include "objscan/common/config.h"
 #include "objscan/geometry/aabb.h"
 #include "objscan/sim/depth_frame.h"
+#include "objscan/sim/occupancy_source.h"
 
 namespace objscan::mapping {
 
@@ -22,8 +23,9 @@ struct OccupancyMapOptions {
   double clamping_min = 0.12;
   double clamping_max = 0.97;
   double occupied_threshold = 0.5;
-  // View validity: the camera and its sphere of this radius must be known free.
-  double view_clearance_m = 0.1;
+  // View validity: the camera's voxel and the 6 points this far from it along the axes must be
+  // known free (0 = the camera's voxel only).
+  double view_clearance_m = 0.0;
 
   template <class V>
   void Visit(V& v) {
@@ -42,42 +44,10 @@ struct OccupancyMapOptions {
 
 enum class Occupancy : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
 
-// A 2-D grid over the XY plane. Cell (ix, iy) covers [origin + ix*res, origin + (ix+1)*res) etc.
-struct NavigationGrid {
-  enum Cell : std::uint8_t { kUnknown = 0, kFree = 1, kObstacle = 2 };
-  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
-  double resolution_m = 0.05;
-  int width = 0;   // cells along X
-  int height = 0;  // cells along Y
-  std::vector<std::uint8_t> cells;  // row-major: index = iy * width + ix
-
-  bool InBounds(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < width && iy < height; }
-  std::uint8_t At(int ix, int iy) const { return cells[static_cast<std::size_t>(iy) * width + ix]; }
-  // Cell of a world point (may be out of bounds).
-  void CellOf(const Eigen::Vector2d& p, int* ix, int* iy) const;
-  Eigen::Vector2d CenterOf(int ix, int iy) const;
-  // Free for navigation (unknown and obstacle cells are blocked).
-  bool IsFree(const Eigen::Vector2d& p) const;
-};
-
-struct NavigationGridOptions {
-  double floor_height_m = 0.0;
-  // Occupied voxels between floor + clearance and robot height are obstacles.
-  double floor_clearance_m = 0.05;
-  double robot_height_m = 1.5;
-  template <class V>
-  void Visit(V& v) {
-    v("floor_height_m", floor_height_m);
-    v("floor_clearance_m", floor_clearance_m);
-    v("robot_height_m", robot_height_m);
-  }
-  void Validate() const;
-};
-
-class OccupancyMap {
+class OccupancyMap : public sim::OccupancySource {
  public:
   explicit OccupancyMap(const OccupancyMapOptions& options = OccupancyMapOptions());
-  ~OccupancyMap();
+  ~OccupancyMap() override;
   OccupancyMap(const OccupancyMap&) = delete;
   OccupancyMap& operator=(const OccupancyMap&) = delete;
 
@@ -87,7 +57,7 @@ class OccupancyMap {
   void InsertRays(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& end_points);
 
   Occupancy Query(const Eigen::Vector3d& p) const;
-  // A camera in occupied or unknown space (or closer than view_clearance_m to either) is invalid.
+  // A camera in occupied or unknown space (or within view_clearance_m of either) is invalid.
   bool IsViewValid(const Eigen::Vector3d& camera_position) const;
   // Calls fn(center, size) for every occupied leaf (size is the leaf edge length in metres).
   void ForEachOccupied(const std::function<void(const Eigen::Vector3d& center, double size_m)>& fn) const;
@@ -97,11 +67,13 @@ class OccupancyMap {
   // Bounds of everything observed (free or occupied); empty before the first frame.
   geometry::Aabb3 KnownBounds() const;
 
-  // The 2-D grid over `bounds_xy` (min, max) or, when empty, the known bounds: a cell is an obstacle
-  // when any voxel of its column between floor + clearance and robot height is occupied, unknown
-  // when no voxel of that band is known, else free.
-  NavigationGrid ToNavigationGrid(const NavigationGridOptions& options,
-                                  const geometry::Aabb3& bounds = geometry::Aabb3()) const;
+  // The navigation grid (sim::OccupancySource) over the known bounds: a cell is occupied when any
+  // occupied voxel overlaps it within the height band (min_z_m, max_z_m) (e.g. floor + 5 cm to the
+  // robot's height), unknown when no voxel of that band above it is known, else free.
+  sim::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override;
+  // The same over the XY footprint of `bounds`.
+  sim::OccupancyGrid2D GridOver(const geometry::Aabb3& bounds, double min_z_m, double max_z_m,
+                                double cell_size_m) const;
 
   const OccupancyMapOptions& options() const { return options_; }
 

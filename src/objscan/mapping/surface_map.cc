@@ -149,18 +149,19 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
       bool own_voxel_taken = idx >= 0;
       if (idx >= 0 && !agrees(idx, n)) idx = -1;
       if (idx < 0) {
-        // Search along the normal for the element this surface already has.
-        // An element stays filed under the voxel of its first point while its mean converges, so
-        // search twice the association distance and accept by the distance to the mean.
+        // Search the voxel column along the normal's dominant axis: a surface voxelised that way
+        // has one voxel per column, so this finds the element this surface already has. Elements
+        // stay filed under the voxel of their first point while their mean converges, so search
+        // twice the association distance and accept by the distance to the mean.
         const float assoc_m = assoc_base + assoc_quad * z * z;
         const int steps = 2 * static_cast<int>(std::ceil(assoc_m * inv_voxel_size_));
+        int axis;
+        n.cwiseAbs().maxCoeff(&axis);
         float best_dist = assoc_m;
-        VoxelKey last = key;
         for (int s = 1; s <= steps; ++s) {
           for (int sign = -1; sign <= 1; sign += 2) {
-            const VoxelKey k = geometry::KeyOf(p + (static_cast<float>(sign * s) * voxel) * n, inv_voxel_size_);
-            if (k == key || k == last) continue;
-            last = k;
+            VoxelKey k = key;
+            (axis == 0 ? k.x : axis == 1 ? k.y : k.z) += sign * s;
             const std::int32_t j = Find(k);
             if (j >= 0 && agrees(j, n)) {
               const float dist = std::fabs((position_[j] - p).dot(n));

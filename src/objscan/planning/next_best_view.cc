@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <thread>
 
 #include "objscan/common/error.h"
 #include "objscan/geometry/aabb.h"
@@ -54,6 +55,7 @@ void NextBestViewOptions::Validate() const {
   config::RequireNonNegative("occlusion_tolerance_voxels", occlusion_tolerance_voxels);
   config::RequireNonNegative("grid_padding_m", grid_padding_m);
   config::Require(max_grid_voxels >= 1000, "max_grid_voxels", "must be at least 1000");
+  config::Require(threads >= 0, "threads", "must be >= 0 (0 = hardware concurrency)");
 }
 
 const char* ToString(NbvStatus status) {
@@ -95,6 +97,9 @@ void NextBestView::Prepare(const NextBestViewInput& input, const geometry::Aabb3
   for (int i = 0; i < n; ++i) {
     RasterizeMask(grid_, *input.models[i].points_world, static_cast<std::uint16_t>(1u << (i + 1)), &mask_);
   }
+
+  ChebyshevFreeDistance(grid_.nx, grid_.ny, grid_.nz, mask_.data(), &free_distance_);
+  occupancy_ = VoxelOccupancy::Of(grid_.nx, grid_.ny, grid_.nz, mask_.data(), free_distance_.data());
 
   // Per-voxel entropies once; every voxel of some Delta_i keeps the gains H(x) - H(x | m_i) of all models.
   delta_.clear();
@@ -156,8 +161,8 @@ ViewGain NextBestView::Evaluate(const geometry::Pose3& T_world_camera, const Cam
     if (!frustum.Contains(p_camera)) continue;
     // One walk serves every model: the scene surface hides the voxel from all of them, a model's own
     // voxels only from that model.
-    const std::uint16_t blocked = BlockingBits(grid_.nx, grid_.ny, grid_.nz, mask_.data(), eye_grid, d.x, d.y, d.z,
-                                               options_.occlusion_tolerance_voxels, kSceneBit, d.models);
+    const std::uint16_t blocked =
+        BlockingBits(occupancy_, eye_grid, d.x, d.y, d.z, options_.occlusion_tolerance_voxels, kSceneBit, d.models);
     if (blocked & kSceneBit) continue;
     const std::uint16_t visible = d.models & static_cast<std::uint16_t>(~blocked);
     if (visible == 0) continue;
@@ -202,16 +207,33 @@ NextBestViewResult NextBestView::Plan(const NextBestViewInput& input, const View
   if (!any_valid) return result;  // kNoValidView
 
   Prepare(input, bounds, &result);
+  // Candidates are independent and Evaluate only reads the prepared grids: score them in parallel.
+  std::vector<int> valid;
+  for (std::size_t j = 0; j < poses.size(); ++j) {
+    if (result.candidates[j].validity == ViewValidity::kValid) valid.push_back(static_cast<int>(j));
+  }
+  const int hardware = static_cast<int>(std::thread::hardware_concurrency());
+  const int workers = std::max(1, std::min(static_cast<int>(valid.size()),
+                                           options_.threads > 0 ? options_.threads : std::max(1, hardware)));
+  auto score = [&](int worker) {
+    for (std::size_t v = worker; v < valid.size(); v += workers) {
+      ViewCandidate& c = result.candidates[valid[v]];
+      c.gain = Evaluate(c.T_world_camera, input.frustum);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(score, w);
+  score(0);
+  for (std::thread& t : pool) t.join();
+
   const double tie_tolerance = 1e-12;
   double best_distance_m = 0.0;
-  for (std::size_t j = 0; j < poses.size(); ++j) {
-    ViewCandidate& c = result.candidates[j];
-    if (c.validity != ViewValidity::kValid) continue;
-    c.gain = Evaluate(c.T_world_camera, input.frustum);
+  for (int j : valid) {
+    const ViewCandidate& c = result.candidates[j];
     const double distance_m =
         input.has_camera_position ? (c.T_world_camera.translation() - input.camera_position_world).norm() : 0.0;
     if (result.best_index < 0) {
-      result.best_index = static_cast<int>(j);
+      result.best_index = j;
       best_distance_m = distance_m;
       continue;
     }
@@ -219,7 +241,7 @@ NextBestViewResult NextBestView::Plan(const NextBestViewInput& input, const View
     const double scale = std::max(1.0, std::abs(best_gain));
     if (c.gain.gain > best_gain + tie_tolerance * scale ||
         (c.gain.gain >= best_gain - tie_tolerance * scale && distance_m < best_distance_m)) {
-      result.best_index = static_cast<int>(j);
+      result.best_index = j;
       best_distance_m = distance_m;
     }
   }

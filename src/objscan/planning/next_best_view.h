@@ -22,6 +22,7 @@
 #include "objscan/geometry/pose.h"
 #include "objscan/planning/local_grid.h"
 #include "objscan/planning/view_candidates.h"
+#include "objscan/planning/voxel_traversal.h"
 
 namespace objscan::planning {
 
@@ -34,6 +35,7 @@ struct NextBestViewOptions {
   double occlusion_tolerance_voxels = 1.5;
   double grid_padding_m = 0.1;  // grid = bounds of gamma and models + blur radius + this
   int max_grid_voxels = 2000000;  // coarser voxels beyond this (huge segments)
+  int threads = 0;  // candidates scored in parallel; 0 = hardware concurrency. Results do not depend on it.
 
   template <class V>
   void Visit(V& v) {
@@ -44,6 +46,7 @@ struct NextBestViewOptions {
     v("occlusion_tolerance_voxels", occlusion_tolerance_voxels);
     v("grid_padding_m", grid_padding_m);
     v("max_grid_voxels", max_grid_voxels);
+    v("threads", threads);
   }
   void Validate() const;
 };
@@ -124,6 +127,8 @@ class NextBestView {
   LocalGrid grid_;
   std::vector<double> probabilities_;
   std::vector<std::uint16_t> mask_;         // bit 0: scene surface (incl. gamma), bit i + 1: model i
+  std::vector<std::uint8_t> free_distance_;  // chessboard distance to the nearest masked voxel
+  VoxelOccupancy occupancy_;                 // view of mask_ and free_distance_ for the ray walks
   std::vector<float> gamma_tdf_;
   std::vector<float> model_tdfs_;           // model-major, one grid each
   std::vector<float> scratch_;

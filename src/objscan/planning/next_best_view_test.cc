@@ -287,9 +287,20 @@ TEST(NextBestViewTest, GainsMatchABruteForceSumOverAllVoxels) {
     }
     EXPECT_NEAR(r.candidates[j].gain.gain, expected, 1e-6 * std::max(1.0, std::abs(expected))) << "candidate " << j;
   }
-  // Same input, same answer.
+  // Same input, same answer, whatever the number of threads.
+  NextBestViewOptions one_thread = options;
+  one_thread.threads = 1;
+  NextBestViewOptions three_threads = options;
+  three_threads.threads = 3;
+  const NextBestViewResult r1 = NextBestView(one_thread).Plan(in, nullptr);
+  const NextBestViewResult r3 = NextBestView(three_threads).Plan(in, nullptr);
   const NextBestViewResult again = nbv.Plan(in, nullptr);
-  for (std::size_t j = 0; j < r.candidates.size(); ++j) EXPECT_EQ(again.candidates[j].gain.gain, r.candidates[j].gain.gain);
+  EXPECT_EQ(r1.best_index, r3.best_index);
+  for (std::size_t j = 0; j < r.candidates.size(); ++j) {
+    EXPECT_EQ(again.candidates[j].gain.gain, r.candidates[j].gain.gain);
+    EXPECT_EQ(r1.candidates[j].gain.gain, r.candidates[j].gain.gain);
+    EXPECT_EQ(r3.candidates[j].gain.gain, r.candidates[j].gain.gain);
+  }
 }
 
 TEST(NextBestViewTest, RejectsBadInput) {

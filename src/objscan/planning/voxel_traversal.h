@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace objscan::planning {
 
@@ -56,10 +57,30 @@ class VoxelWalker {
 bool IsVoxelVisible(int nx, int ny, int nz, const std::uint16_t* mask, std::uint16_t blocking_bits,
                     const Eigen::Vector3d& eye_grid, int tx, int ty, int tz, double tolerance_voxels);
 
+// A grid of occupancy bit masks as the ray walks see it.
+struct VoxelOccupancy {
+  int nx = 0, ny = 0, nz = 0;
+  const std::uint16_t* mask = nullptr;
+  const std::uint8_t* free_distance = nullptr;  // ChebyshevFreeDistance of mask, or null
+  // Voxel range [box_min, box_max) holding every voxel with a non-zero mask; walks are clipped to it.
+  int box_min[3] = {0, 0, 0};
+  int box_max[3] = {0, 0, 0};
+
+  // Fills the box from the mask (empty when no voxel is set).
+  static VoxelOccupancy Of(int nx, int ny, int nz, const std::uint16_t* mask, const std::uint8_t* free_distance);
+};
+
 // The same walk for several occupancy layers at once: the OR of the mask bits of the voxels that
 // IsVoxelVisible would check. The walk stops early once a bit of `stop_any` or all bits of `stop_all`
-// have been met, since the caller's answer cannot change after that (stop_all must not be 0).
-std::uint16_t BlockingBits(int nx, int ny, int nz, const std::uint16_t* mask, const Eigen::Vector3d& eye_grid, int tx,
-                           int ty, int tz, double tolerance_voxels, std::uint16_t stop_any, std::uint16_t stop_all);
+// have been met, since the caller's answer cannot change after that (stop_all must not be 0). With a
+// free-distance field the walk leaps over empty space instead of stepping voxel by voxel, with the
+// same result.
+std::uint16_t BlockingBits(const VoxelOccupancy& grid, const Eigen::Vector3d& eye_grid, int tx, int ty, int tz,
+                           double tolerance_voxels, std::uint16_t stop_any, std::uint16_t stop_all);
+
+// Per voxel, the chessboard (L-infinity) distance in voxels to the nearest voxel with a non-zero mask
+// (0 on such voxels), capped at 255; voxels outside the grid do not count. Every voxel closer than that
+// to v in all three axes is empty, which is what lets a ray leap.
+void ChebyshevFreeDistance(int nx, int ny, int nz, const std::uint16_t* mask, std::vector<std::uint8_t>* distance);
 
 }  // namespace objscan::planning

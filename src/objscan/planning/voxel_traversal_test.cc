@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -102,6 +103,66 @@ TEST(IsVoxelVisibleTest, BlockersBetweenCountOthersDoNot) {
   EXPECT_TRUE(IsVoxelVisible(n, n, n, empty.data(), 1, {0.5, 0.5, 5.5}, 8, 5, 5, 0.0));
   empty[5 + n * (3 + n * 5)] = 1;  // (5, 3, 5): on it (y = 0.5 + 5 * 4.5/8 = 3.3 at x = 5.5)
   EXPECT_FALSE(IsVoxelVisible(n, n, n, empty.data(), 1, {0.5, 0.5, 5.5}, 8, 5, 5, 0.0));
+}
+
+TEST(ChebyshevFreeDistanceTest, MatchesBruteForce) {
+  Rng rng(11);
+  const int nx = 9, ny = 7, nz = 6;
+  std::vector<std::uint16_t> mask(nx * ny * nz, 0);
+  for (int i = 0; i < 6; ++i) mask[rng.UniformInt(0, nx * ny * nz - 1)] = 1;
+  std::vector<std::uint8_t> dist;
+  ChebyshevFreeDistance(nx, ny, nz, mask.data(), &dist);
+  for (int z = 0; z < nz; ++z) {
+    for (int y = 0; y < ny; ++y) {
+      for (int x = 0; x < nx; ++x) {
+        int best = 255;
+        for (int i = 0; i < nx * ny * nz; ++i) {
+          if (mask[i] == 0) continue;
+          const int qx = i % nx, qy = (i / nx) % ny, qz = i / (nx * ny);
+          best = std::min(best, std::max({std::abs(qx - x), std::abs(qy - y), std::abs(qz - z)}));
+        }
+        ASSERT_EQ(dist[x + nx * (y + ny * z)], best) << x << " " << y << " " << z;
+      }
+    }
+  }
+}
+
+TEST(BlockingBitsTest, LeapingOverEmptySpaceGivesTheSameBitsAsTheWalk) {
+  // Random sparse multi-bit occupancy; BlockingBits with and without the distance field, and a reference
+  // that ORs the bits of VoxelWalker's voxels up to the same stopping rule.
+  Rng rng(5);
+  const int n = 24;
+  std::vector<std::uint16_t> mask(n * n * n, 0);
+  // Occupied voxels only in the middle, so that the box clipping matters.
+  for (int i = 0; i < 150; ++i) {
+    const int x = rng.UniformInt(4, 19), y = rng.UniformInt(4, 19), z = rng.UniformInt(4, 19);
+    mask[x + n * (y + n * z)] |= static_cast<std::uint16_t>(1 << rng.UniformInt(0, 3));
+  }
+  std::vector<std::uint8_t> dist;
+  ChebyshevFreeDistance(n, n, n, mask.data(), &dist);
+  const VoxelOccupancy plain = VoxelOccupancy::Of(n, n, n, mask.data(), nullptr);
+  const VoxelOccupancy leaping = VoxelOccupancy::Of(n, n, n, mask.data(), dist.data());
+  int differing_from_zero = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Eigen::Vector3d eye(rng.Uniform(-30, 54), rng.Uniform(-30, 54), rng.Uniform(-30, 54));
+    const int tx = rng.UniformInt(0, n - 1), ty = rng.UniformInt(0, n - 1), tz = rng.UniformInt(0, n - 1);
+    const double tol = trial % 2 == 0 ? 1.5 : 0.0;
+    const std::uint16_t stop_any = 1, stop_all = 0xE;
+    const std::uint16_t walked = BlockingBits(plain, eye, tx, ty, tz, tol, stop_any, stop_all);
+    const std::uint16_t leapt = BlockingBits(leaping, eye, tx, ty, tz, tol, stop_any, stop_all);
+    ASSERT_EQ(walked, leapt) << "trial " << trial;
+    const Eigen::Vector3d target(tx + 0.5, ty + 0.5, tz + 0.5);
+    const double t_stop = 1.0 - tol / (target - eye).norm();
+    std::uint16_t reference = 0;
+    for (VoxelWalker w(n, n, n, eye, target); !w.Done(); w.Next()) {
+      if (w.t_enter() >= t_stop || (w.x() == tx && w.y() == ty && w.z() == tz)) break;
+      reference |= mask[w.index()];
+      if ((reference & stop_any) || (reference & stop_all) == stop_all) break;
+    }
+    ASSERT_EQ(walked, reference) << "trial " << trial;
+    differing_from_zero += walked != 0;
+  }
+  EXPECT_GT(differing_from_zero, 300);  // the rays do meet occupied voxels
 }
 
 }  // namespace

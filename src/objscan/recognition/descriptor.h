@@ -19,7 +19,7 @@ struct DescriptorOptions {
   // box would not, since a partial view has a smaller box).
   double support_radius_m = 0.10;
   double normal_radius_m = 0.04;    // when the surface comes without normals
-  double surface_voxel_m = 0.015;   // the surface is thinned to this spacing before describing
+  double surface_voxel_m = 0.025;   // the surface is thinned to this spacing before describing
 
   template <class V>
   void Visit(V& v) {

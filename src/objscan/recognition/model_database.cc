@@ -55,7 +55,7 @@ class Writer {
   }
   void Points(const std::vector<Eigen::Vector3f>& pts) {
     Pod(static_cast<std::uint32_t>(pts.size()));
-    for (const auto& p : pts) Array(p.data(), 3);
+    Array(reinterpret_cast<const float*>(pts.data()), 3 * pts.size());
   }
   const std::vector<char>& buffer() const { return buf_; }
 
@@ -94,8 +94,9 @@ class Reader {
   }
   std::vector<Eigen::Vector3f> Points(const char* what) {
     const std::uint32_t n = Count(12, what);
+    static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "Vector3f must be packed");
     std::vector<Eigen::Vector3f> pts(n);
-    for (auto& p : pts) Array(p.data(), 3, what);
+    Array(reinterpret_cast<float*>(pts.data()), 3 * static_cast<std::size_t>(n), what);
     return pts;
   }
   bool AtEnd() const { return p_ == end_; }
@@ -208,9 +209,13 @@ void ModelDatabase::Save(const std::string& path) const {
 }
 
 ModelDatabase ModelDatabase::Load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path + ": cannot open model database");
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::streamoff file_size = in.tellg();
+  if (file_size < 0) throw InputError(path + ": cannot read model database");
+  std::vector<char> bytes(static_cast<std::size_t>(file_size));
+  in.seekg(0);
+  if (!in.read(bytes.data(), file_size)) throw InputError(path + ": cannot read model database");
   if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
     throw InputError(path + ": not an objscan model database (bad magic)");
   if (bytes.size() < kHeaderSize) throw InputError(path + ": truncated model database (header)");

@@ -7,22 +7,101 @@
 
 #include "objscan/common/config.h"
 #include "objscan/io/scene_spec.h"
+#include "objscan/mapping/frontiers.h"
+#include "objscan/mapping/occupancy_map.h"
+#include "objscan/mapping/planes.h"
+#include "objscan/mapping/surface_map.h"
+#include "objscan/planning/exploration.h"
+#include "objscan/planning/next_best_object.h"
+#include "objscan/planning/next_best_view.h"
+#include "objscan/recognition/recognizer.h"
+#include "objscan/scanning/scanner_options.h"
+#include "objscan/segmentation/incremental_segmenter.h"
+#include "objscan/segmentation/post_segmenter.h"
 #include "objscan/sim/depth_camera.h"
+#include "objscan/sim/navigator.h"
+#include "objscan/sim/robot.h"
 
 namespace objscan::scanning {
+
+// Evaluation settings (the paper's Results section); used only when ground truth is known.
+struct EvaluationOptions {
+  double coverage_sigma = 0.6;              // sigma of q(v)
+  double coverage_theta_t_rad = M_PI / 2;   // theta_t of q(v); d_t = sensor.max_range_m
+  double coverage_voxel_size_m = 0.05;      // surface voxels of the ground-truth objects (OctoMap's 5 cm)
+  // An incomplete object counts as a recognition at termination when its objectness reaches this
+  // (complete objects always count).
+  double recognized_min_objectness = 0.5;
+
+  template <class V>
+  void Visit(V& v) {
+    v("coverage_sigma", coverage_sigma);
+    v("coverage_theta_t_rad", coverage_theta_t_rad);
+    v("coverage_voxel_size_m", coverage_voxel_size_m);
+    v("recognized_min_objectness", recognized_min_objectness);
+  }
+  void Validate() const {
+    config::RequirePositive("eval.coverage_sigma", coverage_sigma);
+    config::RequirePositive("eval.coverage_theta_t_rad", coverage_theta_t_rad);
+    config::RequirePositive("eval.coverage_voxel_size_m", coverage_voxel_size_m);
+    config::RequireInRange("eval.recognized_min_objectness", recognized_min_objectness, 0.0, 1.0);
+  }
+};
 
 struct SystemConfig {
   io::SceneLoadOptions scene;
   sim::SensorOptions sensor;
+  sim::RobotOptions robot;
+  sim::NavigatorOptions navigation;
+  mapping::SurfaceMapOptions surface_map;
+  mapping::OccupancyMapOptions occupancy;
+  mapping::StructureOptions structure;
+  mapping::FrontierOptions frontiers;
+  segmentation::IncrementalSegmenterOptions presegmentation;
+  recognition::RecognitionOptions recognition;
+  segmentation::PostSegmenterOptions postsegmentation;
+  planning::NextBestObjectOptions nbo;
+  planning::NextBestViewOptions nbv;
+  planning::ExplorationOptions exploration;
+  ScannerOptions scanner;
+  EvaluationOptions eval;
 
   template <class V>
   void Visit(V& v) {
     v("scene", scene);
     v("sensor", sensor);
+    v("robot", robot);
+    v("navigation", navigation);
+    v("surface_map", surface_map);
+    v("occupancy", occupancy);
+    v("structure", structure);
+    v("frontiers", frontiers);
+    v("presegmentation", presegmentation);
+    v("recognition", recognition);
+    v("postsegmentation", postsegmentation);
+    v("nbo", nbo);
+    v("nbv", nbv);
+    v("exploration", exploration);
+    v("scanner", scanner);
+    v("eval", eval);
   }
   void Validate() const {
     scene.Validate();
     sensor.Validate();
+    robot.Validate();
+    navigation.Validate();
+    surface_map.Validate();
+    occupancy.Validate();
+    structure.Validate();
+    frontiers.Validate();
+    presegmentation.Validate();
+    recognition.Validate();
+    postsegmentation.Validate();
+    nbo.Validate();
+    nbv.Validate();
+    exploration.Validate();
+    scanner.Validate();
+    eval.Validate();
   }
 };
 

@@ -11,6 +11,8 @@
 
 namespace objscan::segmentation {
 
+class IncrementalSegmenter;
+
 // One near-convex component c_i: the non-structural map elements carrying one pre-segment label.
 struct Component {
   std::int32_t label = 0;                 // pre-segment label (> 0), stable across updates unless merged
@@ -43,6 +45,7 @@ class ComponentGraph {
   void Assign(std::vector<Component> components, std::vector<std::vector<std::int32_t>> neighbors);
 
  private:
+  friend class IncrementalSegmenter;  // updates components in place
   std::vector<Component> components_;
   std::vector<std::vector<std::int32_t>> neighbors_;  // parallel to components_, ascending
 };

@@ -7,7 +7,9 @@
 #include <set>
 #include <vector>
 
+#include "objscan/common/config.h"
 #include "objscan/common/error.h"
+#include "objscan/segmentation/component_graph.h"
 
 namespace objscan::segmentation {
 namespace {
@@ -323,7 +325,8 @@ TEST(PostSegmenterTest, WarmStepQueriesOnlyWhatChanged) {
   EXPECT_EQ(cold.stats.pair_queries, 99);
   ASSERT_EQ(cold.objects.size(), 50u);
   for (std::size_t k = 0; k < 50; ++k) {
-    EXPECT_EQ(cold.objects[k].component_ids, (std::vector<std::int32_t>{static_cast<int>(2 * k), static_cast<int>(2 * k + 1)}));
+    const std::int32_t first = static_cast<std::int32_t>(2 * k);
+    EXPECT_EQ(cold.objects[k].component_ids, (std::vector<std::int32_t>{first, first + 1}));
   }
   const int cold_full_calls = matcher.full_calls;
 
@@ -398,6 +401,33 @@ TEST(PostSegmenterTest, EmptyInputAndBadInput) {
   bad = PostSegmenterOptions{};
   bad.noise_objectness = 0.97;
   EXPECT_THROW(bad.Validate(), ConfigError);
+}
+
+TEST(PostSegmenterTest, InputFromComponentGraph) {
+  std::vector<Component> components(3);
+  components[0].label = 2;
+  components[0].revision = 5;
+  components[1].label = 4;
+  components[1].revision = 6;
+  components[2].label = 9;
+  components[2].revision = 7;
+  ComponentGraph graph;
+  graph.Assign(std::move(components), {{4}, {2, 9}, {4}});
+  const PostSegmenterInput input = PostSegmenterInput::FromGraph(graph);
+  ASSERT_EQ(input.components.size(), 3u);
+  EXPECT_EQ(input.components[1].id, 4);
+  EXPECT_EQ(input.components[1].revision, 6u);
+  EXPECT_EQ(input.edges, (std::vector<std::pair<std::int32_t, std::int32_t>>{{2, 4}, {4, 9}}));
+}
+
+TEST(PostSegmenterTest, OptionsListEveryField) {
+  PostSegmenterOptions options;
+  const config::FlatValues values = config::Dump(options);
+  std::vector<std::string> keys;
+  for (const auto& kv : values) keys.push_back(kv.first);
+  EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
+                                            "split_instances", "alpha_expansion.max_sweeps",
+                                            "alpha_expansion.min_improvement"}));
 }
 
 }  // namespace

@@ -130,8 +130,10 @@ FloorConnectivityReport CheckFreeFloor(const Scene& scene, double cell_m, double
     const double gx0 = (box.min_m.x() - report.origin_x_m) / cell_m, gx1 = (box.max_m.x() - report.origin_x_m) / cell_m;
     const double gy0 = (box.min_m.y() - report.origin_y_m) / cell_m, gy1 = (box.max_m.y() - report.origin_y_m) / cell_m;
     if (gx1 <= 0 || gy1 <= 0 || gx0 >= width || gy0 >= height) continue;
-    const int x0 = clamp_x(gx0), x1 = std::clamp(static_cast<int>(std::ceil(gx1)) - 1, 0, width - 1);
-    const int y0 = clamp_y(gy0), y1 = std::clamp(static_cast<int>(std::ceil(gy1)) - 1, 0, height - 1);
+    // Cells the box overlaps with positive area (a box edge on a cell border does not take the cell).
+    const double eps = 1e-7;
+    const int x0 = clamp_x(gx0 + eps), x1 = std::clamp(static_cast<int>(std::ceil(gx1 - eps)) - 1, 0, width - 1);
+    const int y0 = clamp_y(gy0 + eps), y1 = std::clamp(static_cast<int>(std::ceil(gy1 - eps)) - 1, 0, height - 1);
     for (int y = y0; y <= y1; ++y) {
       for (int x = x0; x <= x1; ++x) {
         if (report.cells[y * width + x] == kFree) report.cells[y * width + x] = kObstacle;

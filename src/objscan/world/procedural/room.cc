@@ -358,6 +358,23 @@ void PlanOffice(RoomBuilder& b) {
   if (rng.Bernoulli(0.15)) WallItem(b, Category::kRefrigerator, Named("mini"), 0.5);
 }
 
+// The furniture that makes a room recognisable as its category.
+bool HasKeyFurniture(int room, const Scene& scene) {
+  auto has = [&](Category c) {
+    for (const auto& o : scene.objects()) {
+      if (o.category == c) return true;
+    }
+    return false;
+  };
+  switch (room) {
+    case 0: return has(Category::kBed);
+    case 1: return has(Category::kSofa);
+    case 2: return has(Category::kCabinet) || has(Category::kSink);
+    case 3: return has(Category::kToilet);
+    default: return has(Category::kDesk);
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& RoomCategories() {
@@ -386,12 +403,14 @@ Scene GenerateRoom(const std::string& room_category, std::uint64_t scene_seed, c
       case 3: PlanBathroom(b); break;
       default: PlanOffice(b); break;
     }
-    const int count = b.NumFurniture();
+    // Keep the first complete attempt, else the fullest one.
+    const bool complete = HasKeyFurniture(room, b.scene());
+    const int count = b.NumFurniture() + (complete ? 1000 : 0);
     if (count > best_count) {
       best_count = count;
       best = b.TakeScene();
     }
-    if (count >= options.min_objects) break;
+    if (complete && b.NumFurniture() >= options.min_objects) break;
   }
   best.set_name("procedural:" + room_category + ":" + std::to_string(scene_seed));
   return best;

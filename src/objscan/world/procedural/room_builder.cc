@@ -377,7 +377,8 @@ Placement RoomBuilder::PlaceOnTop(const FurnitureModel& model, const Placement& 
     bool free = true;
     for (const auto& f : footprints_) free = free && !(f.support == support.index && r.Overlaps(f.rect, 0.02));
     if (!free) continue;
-    Placement p = Commit(model, c, zmax, support.yaw_rad, false, support.index);
+    // Checked too: a small object must itself be within reach, not only its support.
+    Placement p = Commit(model, c, zmax, support.yaw_rad, true, support.index);
     if (p.Valid()) return p;
   }
   return {};

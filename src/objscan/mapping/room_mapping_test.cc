@@ -1,0 +1,158 @@
+// Occupancy, floor/wall detection and floor frontiers on an analytic room.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "objscan/mapping/frontiers.h"
+#include "objscan/mapping/occupancy_map.h"
+#include "objscan/mapping/planes.h"
+#include "objscan/mapping/surface_map.h"
+#include "objscan/mapping/testing/analytic_world.h"
+
+namespace objscan::mapping {
+namespace {
+
+using testing::AnalyticWorld;
+
+constexpr std::int32_t kFloor = 100, kWall = 101, kBox = 1;
+
+// 4 m x 3 m room, walls 2.4 m high, one box against the +Y wall.
+AnalyticWorld Room() {
+  AnalyticWorld w;
+  w.Add(Eigen::Vector3d(-2.1, -1.6, -0.05), Eigen::Vector3d(2.1, 1.6, 0.0), kFloor);
+  w.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);
+  w.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);
+  w.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);
+  w.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);
+  w.Add(Eigen::Vector3d(-0.5, 1.0, 0.0), Eigen::Vector3d(0.5, 1.5, 0.8), kBox);
+  return w;
+}
+
+geometry::Pose3 View(const Eigen::Vector3d& position, double yaw_deg, double pitch_deg) {
+  return geometry::CameraPoseFromYawPitch(position, geometry::DegToRad(yaw_deg), geometry::DegToRad(pitch_deg));
+}
+
+TEST(OccupancyMapTest, FreeOccupiedUnknownAndNavigationGrid) {
+  const AnalyticWorld room = Room();
+  OccupancyMap occupancy;
+  // Looking at the box and the +Y wall from the room centre.
+  occupancy.Integrate(room.Render(View(Eigen::Vector3d(0, -0.5, 1.2), 90, -25), nullptr));
+  EXPECT_EQ(occupancy.Query(Eigen::Vector3d(0, -0.5, 1.2)), Occupancy::kFree);
+  EXPECT_EQ(occupancy.Query(Eigen::Vector3d(0, 0.3, 0.9)), Occupancy::kFree);    // between camera and box
+  EXPECT_EQ(occupancy.Query(Eigen::Vector3d(0, 1.02, 0.4)), Occupancy::kOccupied);  // box front face
+  EXPECT_EQ(occupancy.Query(Eigen::Vector3d(0, 1.3, 0.4)), Occupancy::kUnknown);  // inside the box
+  EXPECT_EQ(occupancy.Query(Eigen::Vector3d(0, 2.0, 1.5)), Occupancy::kUnknown);  // behind the wall
+  EXPECT_EQ(occupancy.Query(Eigen::Vector3d(0, -1.4, 1.0)), Occupancy::kUnknown);  // behind the camera
+  EXPECT_TRUE(occupancy.IsViewValid(Eigen::Vector3d(0, -0.5, 1.2)));
+  EXPECT_FALSE(occupancy.IsViewValid(Eigen::Vector3d(0, 1.3, 0.4)));
+  EXPECT_FALSE(occupancy.IsViewValid(Eigen::Vector3d(0, -1.4, 1.0)));
+  OccupancyMapOptions with_clearance;
+  with_clearance.view_clearance_m = 0.1;
+  OccupancyMap cautious(with_clearance);
+  cautious.Integrate(room.Render(View(Eigen::Vector3d(0, -0.5, 1.2), 90, -25), nullptr));
+  // Behind the camera is unknown, so a clearance sphere around it is not known free.
+  EXPECT_FALSE(cautious.IsViewValid(Eigen::Vector3d(0, -0.5, 1.2)));
+  EXPECT_TRUE(cautious.IsViewValid(Eigen::Vector3d(0, 0.2, 0.9)));
+
+  const sim::OccupancyGrid2D grid = occupancy.Grid(0.05, 1.5, 0.05);
+  ASSERT_GT(grid.NumCells(), 0u);
+  auto state = [&](double x, double y) {
+    const Eigen::Vector2i c = grid.CellOf(Eigen::Vector2d(x, y));
+    return grid.At(c.x(), c.y());
+  };
+  EXPECT_EQ(state(0.0, 1.02), sim::CellState::kOccupied);  // the box's front face
+  EXPECT_EQ(state(0.0, 0.3), sim::CellState::kFree);
+  EXPECT_EQ(state(0.0, -1.3), sim::CellState::kUnknown);
+  EXPECT_GT(grid.Count(sim::CellState::kFree), 100u);
+
+  std::size_t occupied = 0;
+  occupancy.ForEachOccupied([&](const Eigen::Vector3d& c, double size_m) {
+    EXPECT_NEAR(size_m, 0.05, 1e-9);
+    // Occupied voxels lie on surfaces: the floor, the box or the wall.
+    const bool on_surface = c.z() < 0.1 || c.y() > 0.95;
+    EXPECT_TRUE(on_surface) << c.transpose();
+    ++occupied;
+  });
+  EXPECT_EQ(occupied, occupancy.NumOccupied());
+  EXPECT_GT(occupied, 100u);
+}
+
+struct RoomScan {
+  SurfaceMap surface;
+  OccupancyMap occupancy;
+  StructureResult structure;
+};
+
+// Half-resolution frames keep the test fast.
+void Observe(const AnalyticWorld& room, const geometry::Pose3& T, Rng* rng, RoomScan* scan) {
+  sim::CameraIntrinsics half;
+  half.width_px = 320;
+  half.height_px = 240;
+  half.fx_px = half.fy_px = 262.5;
+  half.cx_px = 159.5;
+  half.cy_px = 119.5;
+  const sim::DepthFrame frame = room.Render(T, rng, 0.001, 0.0015, half);
+  scan->surface.Integrate(frame);
+  scan->occupancy.Integrate(frame);
+}
+
+TEST(StructureAndFrontierTest, FloorWallsFoundAndFrontiersVanishWhenTheFloorIsSeen) {
+  const AnalyticWorld room = Room();
+  Rng rng(21);
+  RoomScan scan;
+  const StructureDetector detector;
+  Observe(room, View(Eigen::Vector3d(-1.0, -0.5, 1.2), 0, -30), &rng, &scan);
+  scan.structure = detector.Update(&scan.surface);
+  ASSERT_TRUE(scan.structure.has_floor);
+  const std::vector<FrontierGoal> first = FindFloorFrontiers(scan.surface, scan.occupancy, scan.structure, {});
+  EXPECT_FALSE(first.empty()) << "frontiers at the start";
+  for (const FrontierGoal& g : first) EXPECT_GE(g.size_cells, 4);
+
+  // Look around from three places until every floor cell has been seen.
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-1.0, -0.5, 1.2), Eigen::Vector3d(1.0, -0.5, 1.2),
+                                   Eigen::Vector3d(0.0, 0.6, 1.2)}) {
+    for (int yaw = 0; yaw < 360; yaw += 45) {
+      Observe(room, View(p, yaw, -35), &rng, &scan);
+      Observe(room, View(p, yaw + 22.5, -60), &rng, &scan);
+    }
+  }
+  scan.structure = detector.Update(&scan.surface);
+  ASSERT_TRUE(scan.structure.has_floor);
+  EXPECT_NEAR(scan.structure.floor_height_m, 0.0, 0.01);
+  ASSERT_EQ(scan.structure.walls.size(), 4u);
+  for (const WallPlane& w : scan.structure.walls) {
+    // Axis-aligned, facing into the room, at the true inner faces.
+    const double ax = std::fabs(w.normal.x()), ay = std::fabs(w.normal.y());
+    EXPECT_GT(std::max(ax, ay), 0.999);
+    const double expected = ax > ay ? 2.0 : 1.5;
+    EXPECT_NEAR(-w.offset_m, expected, 0.015) << w.normal.transpose();
+  }
+  // Tags agree with the ground truth.
+  std::size_t floor_ok = 0, floor_n = 0, wall_ok = 0, wall_n = 0, box_structural = 0, box_n = 0;
+  for (std::size_t i = 0; i < scan.surface.size(); ++i) {
+    const std::int32_t g = scan.surface.gt_instance(i);
+    const Structure s = scan.surface.structure(i);
+    if (g == kFloor) {
+      ++floor_n;
+      floor_ok += s == Structure::kFloor ? 1 : 0;
+    } else if (g == kWall) {
+      ++wall_n;
+      wall_ok += s == Structure::kWall ? 1 : 0;
+    } else if (g == kBox) {
+      ++box_n;
+      box_structural += s != Structure::kNone ? 1 : 0;
+    }
+  }
+  EXPECT_GT(static_cast<double>(floor_ok) / floor_n, 0.97);
+  EXPECT_GT(static_cast<double>(wall_ok) / wall_n, 0.95);
+  ASSERT_GT(box_n, 1000u);
+  // Only the box's bottom edge row (within tolerance of the floor) may be tagged.
+  EXPECT_LT(static_cast<double>(box_structural) / box_n, 0.03);
+
+  const std::vector<FrontierGoal> last = FindFloorFrontiers(scan.surface, scan.occupancy, scan.structure, {});
+  EXPECT_TRUE(last.empty()) << last.size() << " frontier goals left, largest " << last.front().size_cells
+                            << " cells at " << last.front().centroid_m.transpose();
+}
+
+}  // namespace
+}  // namespace objscan::mapping

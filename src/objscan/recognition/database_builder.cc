@@ -1,0 +1,328 @@
+#include "objscan/recognition/database_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <numeric>
+
+#include "objscan/common/error.h"
+#include "objscan/common/rng.h"
+#include "objscan/io/mesh_io.h"
+#include "objscan/recognition/keypoints.h"
+#include "objscan/sim/parallel_for.h"
+#include "objscan/world/procedural/procedural.h"
+
+namespace objscan::recognition {
+
+void DatabaseBuildOptions::Validate() const {
+  scan.Validate();
+  config::RequirePositive("recognition.database.store_voxel_m", store_voxel_m);
+  config::Require(min_entry_points >= 3, "recognition.database.min_entry_points", "must be at least 3");
+  keypoints.Validate();
+  descriptor.Validate();
+  vocabulary.Validate();
+  bow.Validate();
+  config::RequireNonNegative("recognition.database.threads", threads);
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::optional<world::Category> CategoryOfFolder(std::string name) {
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  static const std::map<std::string, std::string> kAliases = {
+      {"bookshelf", "shelves"}, {"bookcase", "shelves"},     {"shelf", "shelves"},
+      {"nightstand", "night_stand"}, {"tvstand", "tv_stand"}, {"bathroom_sink", "sink"},
+      {"couch", "sofa"},        {"fridge", "refrigerator"},   {"wardrobe", "cabinet"},
+      {"tv", "monitor"},        {"television", "monitor"},    {"bath", "bathtub"}};
+  if (auto it = kAliases.find(name); it != kAliases.end()) name = it->second;
+  const auto c = world::ParseCategory(name);
+  if (c && !world::IsStructural(*c)) return c;
+  return std::nullopt;
+}
+
+std::vector<fs::path> SortedEntries(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Database entry under construction (before the vocabulary exists).
+struct PendingEntry {
+  DatabaseEntry entry;
+  std::vector<std::uint8_t> descriptors;  // quantised, keypoints x dimension
+  geometry::Aabb3 bow_bounds;             // bounds of the full-resolution points (like a query's)
+};
+
+struct PendingModel {
+  bool ok = false;
+  std::vector<PendingEntry> entries;  // full model first
+};
+
+constexpr float kDescriptorQuantum = 2.5f;  // FPFH bins are in [0, 100]: 0.4 resolution in a byte
+
+std::vector<Eigen::Vector3f> Select(const std::vector<Eigen::Vector3f>& pts, const std::vector<int>& idx) {
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(idx.size());
+  for (int i : idx) out.push_back(pts[i]);
+  return out;
+}
+
+PendingModel ScanAndDescribe(const ModelSource& source, int model_index, const DatabaseBuildOptions& options,
+                             const VirtualScanOptions& scan_options, const DescriptorExtractor& descriptor) {
+  PendingModel result;
+  const geometry::TriangleMesh mesh = NormalizeModel(source.load_mesh(), TypicalHeight(source.category));
+  if (mesh.Empty()) return result;
+  Rng noise_rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(model_index)));
+  const ModelScan scan = ScanModel(mesh, RingViews(geometry::Bounds(mesh), scan_options), scan_options,
+                                   options.scan_noise, &noise_rng);
+  const geometry::PointCloud& surface = scan.surface;
+  if (static_cast<int>(surface.size()) < options.min_entry_points) return result;
+
+  // Point sets of the entries (full resolution) and the labels each covers.
+  struct Part {
+    EntryKind kind;
+    std::string suffix;
+    std::vector<std::int32_t> labels;  // empty = everything
+    const std::vector<Eigen::Vector3f>* points;
+    std::vector<Eigen::Vector3f> owned;
+  };
+  std::vector<Part> parts;
+  parts.push_back({EntryKind::kFullModel, "", {}, &surface.points, {}});
+  std::vector<std::int32_t> kept_labels;
+  if (options.include_components) {
+    for (const auto& c : scan.components.components()) {
+      if (static_cast<int>(c.points.size()) < options.min_entry_points) continue;
+      kept_labels.push_back(c.label);
+      parts.push_back({EntryKind::kComponent, "/c" + std::to_string(c.label), {c.label}, &c.points, {}});
+    }
+  }
+  if (options.include_pairs) {
+    for (const auto& [a, b] : scan.components.Edges()) {
+      if (!std::binary_search(kept_labels.begin(), kept_labels.end(), a) ||
+          !std::binary_search(kept_labels.begin(), kept_labels.end(), b))
+        continue;
+      Part p{EntryKind::kPair, "/p" + std::to_string(a) + "-" + std::to_string(b), {a, b}, nullptr, {}};
+      const auto* ca = scan.components.Find(a);
+      const auto* cb = scan.components.Find(b);
+      p.owned = ca->points;
+      p.owned.insert(p.owned.end(), cb->points.begin(), cb->points.end());
+      parts.push_back(std::move(p));
+    }
+  }
+  for (auto& p : parts) {
+    if (!p.points) p.points = &p.owned;
+  }
+
+  // Stored points: the full scan thinned; components and pairs index into it.
+  const std::vector<int> thinned = VoxelThin(surface.points, options.store_voxel_m);
+  std::vector<Eigen::Vector3f> stored_points = Select(surface.points, thinned);
+  std::vector<Eigen::Vector3f> stored_normals = Select(surface.normals, thinned);
+
+  // Keypoints per entry, then all descriptors of the model in one batch (shared support surface:
+  // the full scan, as a live component is described within the scene surface around it).
+  std::vector<Eigen::Vector3f> all_keypoints;
+  std::vector<std::size_t> first_keypoint;
+  for (auto& p : parts) {
+    PendingEntry pe;
+    DatabaseEntry& e = pe.entry;
+    e.kind = p.kind;
+    e.category = source.category;
+    e.name = source.name + p.suffix;
+    e.model_index = model_index;
+    Rng rng(options.keypoint_seed);  // the same seed a query uses
+    e.keypoints = Select(*p.points, SampleKeypointsLloyd(*p.points, options.keypoints, &rng));
+    for (const auto& q : *p.points) pe.bow_bounds.Extend(q.cast<double>());
+    if (p.kind == EntryKind::kFullModel) {
+      e.points = stored_points;
+      e.normals = stored_normals;
+    } else {
+      for (std::size_t k = 0; k < thinned.size(); ++k) {
+        const std::int32_t label = surface.labels[thinned[k]];
+        if (std::find(p.labels.begin(), p.labels.end(), label) != p.labels.end()) {
+          e.point_indices.push_back(static_cast<std::int32_t>(k));
+          e.points.push_back(stored_points[k]);
+          e.normals.push_back(stored_normals[k]);
+        }
+      }
+    }
+    for (const auto& q : e.points) e.bounds.Extend(q.cast<double>());
+    first_keypoint.push_back(all_keypoints.size());
+    all_keypoints.insert(all_keypoints.end(), e.keypoints.begin(), e.keypoints.end());
+    result.entries.push_back(std::move(pe));
+  }
+  std::vector<float> descriptors;
+  descriptor.Compute(surface, all_keypoints, &descriptors);
+  const int dim = descriptor.Dimension();
+  for (std::size_t i = 0; i < result.entries.size(); ++i) {
+    PendingEntry& pe = result.entries[i];
+    const std::size_t n = pe.entry.keypoints.size() * dim;
+    pe.descriptors.resize(n);
+    const float* src = &descriptors[first_keypoint[i] * dim];
+    for (std::size_t k = 0; k < n; ++k)
+      pe.descriptors[k] = static_cast<std::uint8_t>(std::clamp(std::lround(src[k] * kDescriptorQuantum), 0L, 255L));
+  }
+  // Drop component/pair entries that ended up without stored points (all smaller than a store voxel).
+  result.entries.erase(std::remove_if(result.entries.begin() + 1, result.entries.end(),
+                                      [](const PendingEntry& pe) { return pe.entry.points.empty(); }),
+                       result.entries.end());
+  result.ok = true;
+  return result;
+}
+
+}  // namespace
+
+std::vector<ModelSource> ModelSourcesFromFolder(const std::string& folder, std::vector<std::string>* skipped_folders) {
+  const fs::path root(folder);
+  if (!fs::is_directory(root)) throw InputError(folder + ": model folder not found");
+  std::vector<ModelSource> sources;
+  for (const fs::path& category_dir : SortedEntries(root)) {
+    if (!fs::is_directory(category_dir)) continue;
+    const std::string folder_name = category_dir.filename().string();
+    const auto category = CategoryOfFolder(folder_name);
+    if (!category) {
+      if (skipped_folders) skipped_folders->push_back(category_dir.string());
+      continue;
+    }
+    std::vector<std::pair<fs::path, std::string>> files;  // path, name prefix
+    for (const fs::path& p : SortedEntries(category_dir)) {
+      if (fs::is_directory(p) && (p.filename() == "train" || p.filename() == "test")) {
+        for (const fs::path& q : SortedEntries(p)) {
+          if (fs::is_regular_file(q) && io::IsMeshFile(q.string()))
+            files.emplace_back(q, p.filename().string() + "/");
+        }
+      } else if (fs::is_regular_file(p) && io::IsMeshFile(p.string())) {
+        files.emplace_back(p, "");
+      }
+    }
+    for (const auto& [path, prefix] : files) {
+      ModelSource s;
+      s.category = *category;
+      s.name = std::string(world::CategoryName(*category)) + "/" + prefix + path.stem().string();
+      s.source = path.string();
+      const std::string file = path.string();
+      s.load_mesh = [file] { return io::LoadMesh(file); };
+      sources.push_back(std::move(s));
+    }
+  }
+  if (sources.empty()) throw InputError(folder + ": no models found (expected <category>/<name>.obj|off|ply|dae|stl|glb)");
+  return sources;
+}
+
+std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index) {
+  std::vector<ModelSource> sources;
+  for (world::Category category : world::procedural::FurnitureCategories()) {
+    for (int k = 0; k < variants; ++k) {
+      const std::uint64_t seed = world::procedural::DatabaseModelSeed(first_index + k);
+      ModelSource s;
+      s.category = category;
+      s.name = std::string(world::CategoryName(category)) + "/" + std::to_string(first_index + k);
+      s.source = "procedural/" + std::string(world::CategoryName(category)) + "/" + std::to_string(seed);
+      s.load_mesh = [category, seed] { return world::procedural::GenerateFurniture(category, seed).mesh; };
+      sources.push_back(std::move(s));
+    }
+  }
+  return sources;
+}
+
+geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model) {
+  const std::string prefix = "procedural/";
+  geometry::TriangleMesh mesh;
+  if (model.source.rfind(prefix, 0) == 0) {
+    const std::string rest = model.source.substr(prefix.size());
+    const auto slash = rest.find('/');
+    const auto category = slash == std::string::npos ? std::nullopt : world::ParseCategory(rest.substr(0, slash));
+    if (!category) throw InputError("model source '" + model.source + "': unknown procedural category");
+    std::uint64_t seed = 0;
+    try {
+      seed = std::stoull(rest.substr(slash + 1));
+    } catch (const std::exception&) {
+      throw InputError("model source '" + model.source + "': bad procedural seed");
+    }
+    mesh = world::procedural::GenerateFurniture(*category, seed).mesh;
+  } else {
+    mesh = io::LoadMesh(model.source);
+  }
+  return NormalizeModel(mesh, TypicalHeight(model.category));
+}
+
+ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const DatabaseBuildOptions& options,
+                            const ProgressCallback& progress) {
+  options.Validate();
+  const auto descriptor = MakeDescriptorExtractor(options.descriptor);
+  const int n_models = static_cast<int>(sources.size());
+  const int workers = std::min(sim::ResolveThreadCount(options.threads), std::max(1, n_models));
+  VirtualScanOptions scan_options = options.scan;
+  if (workers > 1) scan_options.sensor.threads = 1;  // parallel over models instead of image rows
+
+  std::vector<PendingModel> pending(n_models);
+  std::mutex progress_mutex;
+  int done = 0;
+  sim::ParallelForBlocks(n_models, workers, [&](int m) {
+    pending[m] = ScanAndDescribe(sources[m], m, options, scan_options, *descriptor);
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    ++done;
+    ReportProgress(progress, 0.85 * done / n_models, sources[m].name);
+  });
+
+  ModelDatabase db;
+  DatabaseSettings& settings = db.mutable_settings();
+  settings.keypoints = options.keypoints;
+  settings.keypoint_seed = options.keypoint_seed;
+  settings.descriptor = options.descriptor;
+  settings.bow = options.bow;
+
+  // Vocabulary from a seeded sample of all entries' descriptors.
+  const int dim = descriptor->Dimension();
+  std::vector<const std::uint8_t*> rows;
+  for (const auto& pm : pending) {
+    for (const auto& pe : pm.entries) {
+      for (std::size_t k = 0; k < pe.entry.keypoints.size(); ++k) rows.push_back(&pe.descriptors[k * dim]);
+    }
+  }
+  if (rows.empty()) throw InputError("model database: no model produced any points to describe");
+  Rng rng(DeriveSeed(options.seed, 0x70CAB));
+  const std::size_t n_sample = std::min<std::size_t>(rows.size(), options.vocabulary.max_training_descriptors);
+  for (std::size_t i = 0; i < n_sample; ++i) {
+    const std::size_t j = i + static_cast<std::size_t>(rng.Uniform01() * (rows.size() - i));
+    std::swap(rows[i], rows[std::min(j, rows.size() - 1)]);
+  }
+  std::vector<float> training(n_sample * dim);
+  for (std::size_t i = 0; i < n_sample; ++i) {
+    for (int d = 0; d < dim; ++d) training[i * dim + d] = rows[i][d] / kDescriptorQuantum;
+  }
+  ReportProgress(progress, 0.88, "vocabulary");
+  db.set_vocabulary(Vocabulary::Train(training, dim, options.vocabulary, &rng));
+
+  // Entries with their histograms.
+  std::vector<float> descriptors;
+  for (int m = 0; m < n_models; ++m) {
+    if (!pending[m].ok) continue;
+    DatabaseModel model;
+    model.name = sources[m].name;
+    model.category = sources[m].category;
+    model.source = sources[m].source;
+    const int model_index = static_cast<int>(db.models().size());
+    for (auto& pe : pending[m].entries) {
+      descriptors.resize(pe.descriptors.size());
+      for (std::size_t k = 0; k < descriptors.size(); ++k) descriptors[k] = pe.descriptors[k] / kDescriptorQuantum;
+      pe.entry.bow = ComputeSpatialBow(db.vocabulary(), pe.entry.keypoints, descriptors, pe.bow_bounds, options.bow);
+      pe.entry.model_index = model_index;
+      if (pe.entry.kind == EntryKind::kFullModel) model.full_entry = static_cast<int>(db.entries().size());
+      db.mutable_entries().push_back(std::move(pe.entry));
+    }
+    db.mutable_models().push_back(std::move(model));
+    pending[m] = PendingModel();
+  }
+  ReportProgress(progress, 0.97, "index");
+  db.Finalize();
+  ReportProgress(progress, 1.0, "done");
+  return db;
+}
+
+}  // namespace objscan::recognition

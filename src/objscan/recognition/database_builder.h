@@ -1,0 +1,86 @@
+#pragma once
+// Building the model database (paper §4.2 "3D model database"): each source model is normalised
+// (metres, Z up, standing on z = 0, centred in XY), scanned virtually from rings of views, fused and
+// pre-segmented like the live system; its full scan, every component and every adjacent pair become
+// entries carrying the model's category. Then the vocabulary is trained on the entries' descriptors
+// and every entry gets its spatial bag-of-words histogram.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/common/progress.h"
+#include "objscan/geometry/mesh.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/recognition/virtual_scan.h"
+
+namespace objscan::recognition {
+
+struct DatabaseBuildOptions {
+  VirtualScanOptions scan;
+  // Database scans are noise-free: the models are clean and their points should describe the
+  // shape itself; live queries carry sensor noise, which the fused map mostly averages out.
+  bool scan_noise = false;
+  double store_voxel_m = 0.02;   // stored entry points (for alignment consumers, NBV, replacement)
+  int min_entry_points = 40;     // components with fewer surface elements are not entries
+  bool include_components = true;
+  bool include_pairs = true;
+  KeypointOptions keypoints;
+  std::uint64_t keypoint_seed = 1;
+  DescriptorOptions descriptor;
+  VocabularyOptions vocabulary;
+  SpatialBowOptions bow;
+  std::uint64_t seed = 1;  // vocabulary sampling and seeding, scan noise when on
+  int threads = 0;         // models scanned in parallel; 0 = hardware concurrency. Same result.
+
+  template <class V>
+  void Visit(V& v) {
+    v("scan", scan);
+    v("scan_noise", scan_noise);
+    v("store_voxel_m", store_voxel_m);
+    v("min_entry_points", min_entry_points);
+    v("include_components", include_components);
+    v("include_pairs", include_pairs);
+    v("keypoints", keypoints);
+    v("keypoint_seed", keypoint_seed);
+    v("descriptor", descriptor);
+    v("vocabulary", vocabulary);
+    v("bow", bow);
+    v("seed", seed);
+    v("threads", threads);
+  }
+  void Validate() const;
+};
+
+// One model to put into the database.
+struct ModelSource {
+  world::Category category = world::Category::kOther;
+  std::string name;    // unique in the database, e.g. "chair/chair_armless_s17" or "chair/0042"
+  std::string source;  // "procedural/<category>/<model seed>" or the mesh file path
+  // Returns the mesh in metres with Z up (any placement: the builder normalises it). Called once,
+  // possibly on a worker thread; throws InputError naming the file on failure.
+  std::function<geometry::TriangleMesh()> load_mesh;
+};
+
+// Models of a folder: <category>/<name>.<ext> and ModelNet-style <category>/{train,test}/<name>.<ext>
+// for every mesh extension io::LoadMesh reads. Folder names are category names (as in
+// world::ParseCategory, plus a few common aliases such as "bookshelf" and "bathroom_sink"); folders
+// with other names are listed in *skipped_folders. Throws InputError naming the folder when it is
+// missing or yields no model.
+std::vector<ModelSource> ModelSourcesFromFolder(const std::string& folder, std::vector<std::string>* skipped_folders);
+
+// `variants` procedural models per furniture category, from database model seeds
+// DatabaseModelSeed(first_index) ... DatabaseModelSeed(first_index + variants - 1).
+std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index = 0);
+
+// The mesh of a database model from its `source` string (procedural or a file), normalised the way
+// the builder does. Throws InputError when the source cannot be loaded.
+geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model);
+
+// Builds (and finalizes) the database. Throws InputError when a model cannot be loaded or no entry
+// results.
+ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const DatabaseBuildOptions& options,
+                            const ProgressCallback& progress = nullptr);
+
+}  // namespace objscan::recognition

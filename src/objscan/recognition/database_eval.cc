@@ -1,0 +1,180 @@
+#include "objscan/recognition/database_eval.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+#include "objscan/common/error.h"
+#include "objscan/common/rng.h"
+#include "objscan/common/timer.h"
+#include "objscan/recognition/database_builder.h"
+#include "objscan/sim/parallel_for.h"
+#include "objscan/world/procedural/procedural.h"
+
+namespace objscan::recognition {
+
+void DatabaseEvalOptions::Validate() const {
+  config::Require(queries_per_category >= 1, "recognition.eval.queries_per_category", "must be at least 1");
+  config::Require(objectness_models_per_category >= 0, "recognition.eval.objectness_models_per_category",
+                  "must be >= 0");
+  config::RequireInRange("recognition.eval.min_elevation_deg", min_elevation_deg, -30.0, 89.0);
+  config::RequireInRange("recognition.eval.max_elevation_deg", max_elevation_deg, min_elevation_deg, 89.0);
+  config::RequireNonNegative("recognition.eval.threads", threads);
+  scan.Validate();
+  recognition.Validate();
+}
+
+namespace {
+
+// A random placement in the world: yaw about Z and a horizontal offset (the database frame is
+// canonical, a query is not).
+geometry::TriangleMesh RandomlyPlaced(const geometry::TriangleMesh& mesh, Rng* rng) {
+  Eigen::Affine3d T = Eigen::Affine3d::Identity();
+  T.translate(Eigen::Vector3d(rng->Uniform(-3, 3), rng->Uniform(-3, 3), 0.0));
+  T.rotate(Eigen::AngleAxisd(rng->Uniform(-M_PI, M_PI), Eigen::Vector3d::UnitZ()));
+  return geometry::Transformed(mesh, T);
+}
+
+geometry::PointCloud ScanViews(const geometry::TriangleMesh& mesh, int n_views, double step_rad,
+                               const DatabaseEvalOptions& options, const VirtualScanOptions& scan, Rng* rng) {
+  const geometry::Aabb3 bounds = geometry::Bounds(mesh);
+  const double azimuth = rng->Uniform(-M_PI, M_PI);
+  std::vector<geometry::Pose3> views;
+  for (int v = 0; v < n_views; ++v) {
+    const double elevation =
+        geometry::DegToRad(rng->Uniform(options.min_elevation_deg, options.max_elevation_deg));
+    views.push_back(ViewFrom(bounds, azimuth + v * step_rad, elevation, scan));
+  }
+  return ScanModel(mesh, views, scan, options.query_noise, rng).surface;
+}
+
+}  // namespace
+
+DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const DatabaseEvalOptions& options,
+                                    const ProgressCallback& progress) {
+  options.Validate();
+  const Recognizer recognizer(database, options.recognition);
+  std::vector<world::Category> categories;
+  for (world::Category c : world::procedural::FurnitureCategories()) {
+    const bool in_db = std::any_of(database.models().begin(), database.models().end(),
+                                   [c](const DatabaseModel& m) { return m.category == c; });
+    if (in_db) categories.push_back(c);
+  }
+  if (categories.empty()) throw InputError("db eval: the database has no category the procedural generator makes");
+
+  const int workers = sim::ResolveThreadCount(options.threads);
+  VirtualScanOptions scan = options.scan;
+  if (workers > 1) scan.sensor.threads = 1;
+
+  // Recognition queries: (category, index, views).
+  struct Task {
+    world::Category category;
+    int index;
+    int views;
+  };
+  std::vector<Task> tasks;
+  for (world::Category c : categories) {
+    for (int q = 0; q < options.queries_per_category; ++q) {
+      for (int views : {1, 3}) tasks.push_back({c, q, views});
+    }
+  }
+  // Objectness tasks: database models scanned afresh.
+  std::vector<int> objectness_models;
+  {
+    std::map<world::Category, int> taken;
+    for (std::size_t m = 0; m < database.models().size(); ++m) {
+      const world::Category c = database.models()[m].category;
+      if (taken[c] < options.objectness_models_per_category) {
+        ++taken[c];
+        objectness_models.push_back(static_cast<int>(m));
+      }
+    }
+  }
+  const int n_tasks = static_cast<int>(tasks.size());
+  const int n_total = n_tasks + static_cast<int>(objectness_models.size());
+
+  struct TaskResult {
+    world::Category predicted = world::Category::kOther;
+    bool top1 = false, top5 = false;
+    double ms = 0.0;
+    double complete = 0.0, partial = 0.0;
+  };
+  std::vector<TaskResult> results(n_total);
+  std::mutex progress_mutex;
+  int done = 0;
+  sim::ParallelForBlocks(n_total, workers, [&](int t) {
+    Rng rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(t)));
+    TaskResult& r = results[t];
+    if (t < n_tasks) {
+      const Task& task = tasks[t];
+      const std::uint64_t seed = world::procedural::DatabaseModelSeed(options.first_query_index + task.index);
+      const geometry::TriangleMesh mesh = RandomlyPlaced(
+          NormalizeModel(world::procedural::GenerateFurniture(task.category, seed).mesh, 1.0), &rng);
+      const geometry::PointCloud surface =
+          ScanViews(mesh, task.views, geometry::DegToRad(options.multi_view_step_deg), options, scan, &rng);
+      const Stopwatch watch;
+      const QueryDescription query = recognizer.Describe(surface);
+      const std::vector<SimilarModel> similar = recognizer.Retrieve(query, RetrievalScope::kFullModels);
+      r.ms = watch.ElapsedMs();
+      if (!similar.empty()) {
+        r.predicted = database.entries()[similar.front().entry].category;
+        r.top1 = r.predicted == task.category;
+        for (const auto& s : similar) r.top5 = r.top5 || database.entries()[s.entry].category == task.category;
+      }
+    } else {
+      const DatabaseModel& model = database.models()[objectness_models[t - n_tasks]];
+      const geometry::TriangleMesh mesh = RandomlyPlaced(LoadModelSourceMesh(model), &rng);
+      // Complete: every ring view again, with noise and the ring turned by a random azimuth.
+      std::vector<geometry::Pose3> views;
+      const double turn = rng.Uniform(0.0, 2.0 * M_PI);
+      const geometry::Aabb3 bounds = geometry::Bounds(mesh);
+      for (std::size_t ring = 0; ring < scan.ring_elevations_deg.size(); ++ring) {
+        const int n = static_cast<int>(scan.ring_views[ring]);
+        for (int k = 0; k < n; ++k)
+          views.push_back(ViewFrom(bounds, turn + 2.0 * M_PI * (k + 0.5 * (ring % 2)) / n,
+                                   geometry::DegToRad(scan.ring_elevations_deg[ring]), scan));
+      }
+      const geometry::PointCloud complete = ScanModel(mesh, views, scan, options.query_noise, &rng).surface;
+      const geometry::PointCloud partial = ScanViews(mesh, 1, 0.0, options, scan, &rng);
+      r.complete = recognizer.Match(recognizer.Describe(complete), model.full_entry).objectness.objectness;
+      r.partial = recognizer.Match(recognizer.Describe(partial), model.full_entry).objectness.objectness;
+    }
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    ++done;
+    ReportProgress(progress, static_cast<double>(done) / n_total, "query");
+  });
+
+  DatabaseEvalResult out;
+  double ms_sum = 0.0;
+  for (int views : {1, 3}) {
+    ViewCountAccuracy acc;
+    acc.views = views;
+    for (int t = 0; t < n_tasks; ++t) {
+      if (tasks[t].views != views) continue;
+      ++acc.queries;
+      acc.top1_category_accuracy += results[t].top1 ? 1.0 : 0.0;
+      acc.top5_category_accuracy += results[t].top5 ? 1.0 : 0.0;
+      ms_sum += results[t].ms;
+      out.queries.push_back({tasks[t].category, results[t].predicted, views, results[t].top5});
+    }
+    acc.top1_category_accuracy /= std::max(1, acc.queries);
+    acc.top5_category_accuracy /= std::max(1, acc.queries);
+    out.by_views.push_back(acc);
+  }
+  out.top1_category_accuracy = out.by_views[0].top1_category_accuracy;
+  out.top5_category_accuracy = out.by_views[0].top5_category_accuracy;
+  out.ms_per_query = n_tasks > 0 ? ms_sum / n_tasks : 0.0;
+  out.objectness_models = static_cast<int>(objectness_models.size());
+  for (int t = n_tasks; t < n_total; ++t) {
+    out.objectness_complete_mean += results[t].complete;
+    out.objectness_partial_mean += results[t].partial;
+  }
+  if (out.objectness_models > 0) {
+    out.objectness_complete_mean /= out.objectness_models;
+    out.objectness_partial_mean /= out.objectness_models;
+  }
+  return out;
+}
+
+}  // namespace objscan::recognition

@@ -1,0 +1,78 @@
+#pragma once
+// Evaluation of a model database (`objscan db eval`): recognition of unseen procedural models from
+// one and from three views (category accuracy of the best and of the n_s retrieved full models), and
+// the objectness of database models scanned afresh, completely and from one view.
+#include <cstdint>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/common/progress.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/recognition/recognizer.h"
+#include "objscan/recognition/virtual_scan.h"
+
+namespace objscan::recognition {
+
+struct DatabaseEvalOptions {
+  int queries_per_category = 5;
+  // Unseen models are DatabaseModelSeed(first_query_index + k): far beyond any database build's
+  // indices, and never a procedural scene's model.
+  std::uint64_t first_query_index = 1000000;
+  int objectness_models_per_category = 2;
+  bool query_noise = true;            // queries carry the live sensor noise
+  double min_elevation_deg = 15.0;    // query views look down on the model from this range
+  double max_elevation_deg = 45.0;
+  double multi_view_step_deg = 45.0;  // azimuth step between the views of a multi-view query
+  std::uint64_t seed = 7;
+  int threads = 0;
+  VirtualScanOptions scan;
+  RecognitionOptions recognition;
+
+  template <class V>
+  void Visit(V& v) {
+    v("queries_per_category", queries_per_category);
+    v("first_query_index", first_query_index);
+    v("objectness_models_per_category", objectness_models_per_category);
+    v("query_noise", query_noise);
+    v("min_elevation_deg", min_elevation_deg);
+    v("max_elevation_deg", max_elevation_deg);
+    v("multi_view_step_deg", multi_view_step_deg);
+    v("seed", seed);
+    v("threads", threads);
+    v("scan", scan);
+    v("recognition", recognition);
+  }
+  void Validate() const;
+};
+
+struct ViewCountAccuracy {
+  int views = 0;
+  int queries = 0;
+  double top1_category_accuracy = 0.0;
+  double top5_category_accuracy = 0.0;  // the true category among the n_s retrieved
+};
+
+struct DatabaseEvalResult {
+  double top1_category_accuracy = 0.0;  // single views
+  double top5_category_accuracy = 0.0;  // single views
+  double objectness_complete_mean = 0.0;
+  double objectness_partial_mean = 0.0;
+  double ms_per_query = 0.0;            // describe + retrieve (+ align, objectness) per query
+  std::vector<ViewCountAccuracy> by_views;  // 1 and 3 views
+  int objectness_models = 0;
+  // Per single-view query: true and predicted category, for confusion analysis.
+  struct Query {
+    world::Category truth = world::Category::kOther;
+    world::Category predicted = world::Category::kOther;
+    int views = 1;
+    bool top5 = false;
+  };
+  std::vector<Query> queries;
+};
+
+// Only categories of the database that the procedural generator makes are queried; throws
+// InputError when there is none.
+DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const DatabaseEvalOptions& options,
+                                    const ProgressCallback& progress = nullptr);
+
+}  // namespace objscan::recognition

@@ -1,0 +1,86 @@
+#pragma once
+// Similar-model retrieval M(c) and objectness O(c, m) against a ModelDatabase (paper §4.2, §6.1):
+// a query point set is described like the database entries (Lloyd keypoints, descriptors, spatial
+// BoW), a shortlist of entries comes from the inverted index, each is aligned to the query (yaw +
+// translation search, trimmed ICP) and scored; the n_s best are returned with their transforms and
+// objectness. Const and thread-safe once constructed.
+#include <memory>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/geometry/point_cloud.h"
+#include "objscan/recognition/alignment.h"
+#include "objscan/recognition/descriptor.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/recognition/objectness.h"
+
+namespace objscan::recognition {
+
+struct RecognitionOptions {
+  int num_similar_models = 5;  // n_s
+  int shortlist_size = 20;     // bag-of-words candidates verified by alignment (>= n_s)
+  // The shortlist is re-ranked by (bag-of-words score)^bow_rank_weight * fit, where fit =
+  // exp(-sqrt(d(c, m)) / Diag(c)) is the similarity half of eq. (1): a partial query is not
+  // penalised for what it has not seen yet, which the completeness half would do.
+  double bow_rank_weight = 1.0;
+  AlignmentOptions alignment;
+
+  template <class V>
+  void Visit(V& v) {
+    v("num_similar_models", num_similar_models);
+    v("shortlist_size", shortlist_size);
+    v("bow_rank_weight", bow_rank_weight);
+    v("alignment", alignment);
+  }
+  void Validate() const;
+};
+
+// A query described the way the database entries are.
+struct QueryDescription {
+  std::vector<Eigen::Vector3f> keypoints;  // n_p Lloyd keypoints (world frame)
+  geometry::Aabb3 bounds;                  // of the query points
+  double diagonal_m = 0.0;                 // Diag(c)
+  SparseHistogram bow;
+  bool empty() const { return keypoints.empty(); }
+};
+
+struct SimilarModel {
+  int entry = -1;          // index into ModelDatabase::entries()
+  float bow_score = 0.f;   // cosine similarity of the spatial BoW histograms
+  AlignmentResult alignment;  // T_item_query: query (world) -> entry (model frame)
+  ObjectnessTerms objectness; // eq. (1) after alignment
+  double fit = 0.0;           // exp(-sqrt(d(c, m)) / Diag(c))
+  double rank_score = 0.0;
+  // The entry's pose in the query's (world) frame: T_world_model = T_item_query^-1.
+  Eigen::Affine3d T_world_model() const { return alignment.T_item_query.inverse(); }
+};
+
+class Recognizer {
+ public:
+  // The database must be finalized and outlive the recognizer.
+  Recognizer(const ModelDatabase& database, const RecognitionOptions& options);
+
+  // Describes a query. `support` (optional) is a larger surface around the query (e.g. the scene
+  // surface) whose points support the descriptors near the query's boundary; by default the query's
+  // own points. Points may come with or without normals.
+  QueryDescription Describe(const geometry::PointCloud& query, const geometry::PointCloud* support = nullptr) const;
+
+  // M(c): the n_s most similar entries in `scope`, best first. Empty when nothing shares a word.
+  std::vector<SimilarModel> Retrieve(const QueryDescription& query, RetrievalScope scope) const;
+
+  // Bag-of-words candidates only (no alignment), best first.
+  std::vector<ScoredItem> Candidates(const QueryDescription& query, RetrievalScope scope, int count) const;
+
+  // Aligns the query to one entry and measures it (bow_score left 0).
+  SimilarModel Match(const QueryDescription& query, int entry) const;
+
+  const ModelDatabase& database() const { return database_; }
+  const RecognitionOptions& options() const { return options_; }
+
+ private:
+  const ModelDatabase& database_;
+  RecognitionOptions options_;
+  std::unique_ptr<DescriptorExtractor> descriptor_;
+};
+
+}  // namespace objscan::recognition

@@ -1,0 +1,79 @@
+#pragma once
+// What one scanning run did, as plain data: steps with their actions, poses, travel and per-stage
+// timing, the objects found, and the trajectory. Serialised to run.json / trajectory.csv by
+// run_writer; metrics are added by eval when ground truth is known.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "objscan/geometry/pose.h"
+#include "objscan/world/category.h"
+
+namespace objscan::scanning {
+
+enum class Termination { kRunning, kDone, kMaxSteps, kStuck };
+const char* TerminationName(Termination t);
+
+struct NbvCandidateRecord {
+  geometry::Pose3 T_world_camera = geometry::Pose3::Identity();
+  std::string validity;  // planning::ViewValidity name
+  double gain = 0.0;
+};
+
+struct StepRecord {
+  int index = 0;
+  std::string action;       // "nbo" (new object of interest), "nbv" (same one), "frontier" (exploration)
+  bool look_around = false; // views taken turning in place (start and frontier arrivals)
+  int ooi = -1;             // object of interest id, -1 when exploring
+  int views = 0;            // frames taken in this step
+  geometry::Pose3 T_world_camera = geometry::Pose3::Identity();  // last camera pose of the step
+  double travel_m = 0.0;    // base travel of this step
+  std::map<std::string, double> timing_ms;  // sense, fuse, segment, recognize, nbo, nbv, navigate_sim(s*1000)
+  std::vector<NbvCandidateRecord> nbv_candidates;
+  int num_components = 0;
+  int num_objects = 0;
+};
+
+struct ObjectRecord {
+  int id = -1;                                  // smallest pre-segment label of the object
+  std::optional<world::Category> category;      // nullopt: unrecognized
+  std::string model;                            // best database model name ("" when none)
+  int model_index = -1;                         // into the database's models
+  double objectness = 0.0;
+  bool complete = false;                        // replaced by its model
+  bool given_up = false;                        // ran out of views or of valid views
+  geometry::Pose3 T_world_model = geometry::Pose3::Identity();
+  int points = 0;                               // map elements of the object
+  std::vector<std::int32_t> labels;             // its pre-segment labels
+  int gt_instance = -1;                         // majority ground-truth instance (evaluation only)
+};
+
+struct TrajectorySample {
+  double time_s = 0.0;  // simulated time
+  double x_m = 0.0, y_m = 0.0, theta_rad = 0.0;  // base
+  geometry::Pose3 T_world_camera = geometry::Pose3::Identity();
+  bool view = false;   // a frame was taken here
+  int step = 0;
+};
+
+struct TimingTotals {
+  double total = 0, sense = 0, fuse = 0, segment = 0, recognize = 0, nbo = 0, nbv = 0, navigate_sim = 0;
+};
+
+struct RunRecord {
+  std::string scene;
+  std::uint64_t seed = 0;
+  Termination terminated = Termination::kRunning;
+  std::vector<StepRecord> steps;
+  std::vector<ObjectRecord> objects;
+  std::vector<TrajectorySample> trajectory;
+  TimingTotals timing_s;
+  double travel_m = 0.0;
+  int views = 0;
+  int nbo_count = 0;
+  int nbv_views = 0;
+  double NbvPerObject() const { return nbo_count > 0 ? static_cast<double>(nbv_views) / nbo_count : 0.0; }
+};
+
+}  // namespace objscan::scanning

@@ -1,0 +1,690 @@
+#include "objscan/scanning/scanner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "objscan/common/error.h"
+#include "objscan/common/rng.h"
+#include "objscan/common/timer.h"
+#include "objscan/mapping/frontiers.h"
+#include "objscan/mapping/occupancy_map.h"
+#include "objscan/mapping/planes.h"
+#include "objscan/mapping/surface_map.h"
+#include "objscan/planning/exploration.h"
+#include "objscan/planning/next_best_object.h"
+#include "objscan/planning/next_best_view.h"
+#include "objscan/recognition/recognizer.h"
+#include "objscan/scanning/recognizer_matcher.h"
+#include "objscan/segmentation/incremental_segmenter.h"
+#include "objscan/segmentation/post_segmenter.h"
+#include "objscan/sim/depth_camera.h"
+#include "objscan/sim/ground_truth_occupancy.h"
+#include "objscan/sim/navigator.h"
+#include "objscan/sim/robot.h"
+
+namespace objscan::scanning {
+
+const char* TerminationName(Termination t) {
+  switch (t) {
+    case Termination::kRunning: return "running";
+    case Termination::kDone: return "done";
+    case Termination::kMaxSteps: return "max_steps";
+    case Termination::kStuck: return "stuck";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// The robot's own map as the navigator sees it, plus the cells its body has occupied: wherever the
+// robot stood is free floor, even when the camera never saw it (it is below the field of view).
+class RobotOccupancy : public sim::OccupancySource {
+ public:
+  RobotOccupancy(const mapping::OccupancyMap& map, const std::vector<Eigen::Vector2d>& visited, double radius_m)
+      : map_(map), visited_(visited), radius_m_(radius_m) {}
+  sim::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override {
+    sim::OccupancyGrid2D grid;
+    geometry::Aabb3 bounds = map_.KnownBounds();
+    for (const auto& v : visited_) {
+      bounds.Extend(Eigen::Vector3d(v.x() - 1.0, v.y() - 1.0, 0.0));
+      bounds.Extend(Eigen::Vector3d(v.x() + 1.0, v.y() + 1.0, 0.0));
+    }
+    if (bounds.Empty()) return grid;
+    grid = map_.GridOver(bounds, min_z_m, max_z_m, cell_size_m);
+    const int r = static_cast<int>(std::ceil(radius_m_ / cell_size_m)) + 1;
+    for (const auto& v : visited_) {
+      const Eigen::Vector2i c = grid.CellOf(v);
+      for (int dy = -r; dy <= r; ++dy) {
+        for (int dx = -r; dx <= r; ++dx) {
+          if (!grid.Contains(c.x() + dx, c.y() + dy)) continue;
+          if ((grid.CellCenter(c.x() + dx, c.y() + dy) - v).norm() > radius_m_ + 0.5 * cell_size_m) continue;
+          auto& cell = grid.cells[grid.Index(c.x() + dx, c.y() + dy)];
+          if (cell == sim::CellState::kUnknown) cell = sim::CellState::kFree;
+        }
+      }
+    }
+    return grid;
+  }
+
+ private:
+  const mapping::OccupancyMap& map_;
+  const std::vector<Eigen::Vector2d>& visited_;
+  double radius_m_;
+};
+
+// NBV candidate validity with the robot's own occupancy map and navigator.
+class MapViewValidator : public planning::ViewValidator {
+ public:
+  MapViewValidator(const mapping::OccupancyMap& occupancy, const sim::Robot& robot, const sim::Navigator& navigator,
+                   double skip_m)
+      : occupancy_(occupancy), robot_(robot), navigator_(navigator), skip_m_(skip_m) {}
+
+  planning::ViewValidity Check(const geometry::Pose3& T_world_camera,
+                               const Eigen::Vector3d& target_world) const override {
+    const Eigen::Vector3d p = T_world_camera.translation();
+    const mapping::Occupancy o = occupancy_.Query(p);
+    if (o == mapping::Occupancy::kOccupied) return planning::ViewValidity::kOccupied;
+    if (o == mapping::Occupancy::kUnknown) return planning::ViewValidity::kUnknown;
+    // Line of sight through the occupancy map, up to the object's own extent around its centre.
+    const Eigen::Vector3d d = target_world - p;
+    const double length = d.norm();
+    const double step = 0.5 * occupancy_.resolution_m();
+    for (double s = step; s < length - skip_m_; s += step) {
+      if (occupancy_.Query(p + d * (s / length)) == mapping::Occupancy::kOccupied) {
+        return planning::ViewValidity::kLineOfSightBlocked;
+      }
+    }
+    if (!robot_.PlanTo(T_world_camera, navigator_).ok()) return planning::ViewValidity::kUnreachable;
+    return planning::ViewValidity::kValid;
+  }
+
+ private:
+  const mapping::OccupancyMap& occupancy_;
+  const sim::Robot& robot_;
+  const sim::Navigator& navigator_;
+  double skip_m_;
+};
+
+struct CompletedObject {
+  int id = -1;
+  segmentation::ModelMatch model;
+  double objectness = 0.0;
+  std::vector<std::int32_t> labels;
+};
+
+sim::BasePose ChooseStart(const world::Scene& scene, const sim::RobotOptions& robot_options,
+                          const sim::NavigatorOptions& nav_options) {
+  // The operator puts the robot down on free floor: the free spot farthest from obstacles, nearest the
+  // room's centre on ties. (Ground truth is used for this placement only.)
+  sim::GroundTruthOccupancy truth(scene);
+  sim::Navigator nav(truth, robot_options.base_radius_m, robot_options.height_m, nav_options);
+  const auto& grid = nav.grid();
+  const auto& blocked = nav.blocked();
+  std::vector<double> clearance(grid.NumCells(), 0.0);
+  // Chamfer distance to the nearest blocked cell (two passes).
+  const double inf = 1e9, c1 = grid.cell_size_m, c2 = grid.cell_size_m * std::sqrt(2.0);
+  for (std::size_t i = 0; i < clearance.size(); ++i) clearance[i] = blocked[i] ? 0.0 : inf;
+  auto relax = [&](int x, int y, int nx, int ny, double w) {
+    if (!grid.Contains(nx, ny)) {
+      clearance[grid.Index(x, y)] = std::min(clearance[grid.Index(x, y)], w);
+      return;
+    }
+    clearance[grid.Index(x, y)] = std::min(clearance[grid.Index(x, y)], clearance[grid.Index(nx, ny)] + w);
+  };
+  for (int y = 0; y < grid.height; ++y)
+    for (int x = 0; x < grid.width; ++x) {
+      relax(x, y, x - 1, y, c1), relax(x, y, x, y - 1, c1), relax(x, y, x - 1, y - 1, c2), relax(x, y, x + 1, y - 1, c2);
+    }
+  for (int y = grid.height - 1; y >= 0; --y)
+    for (int x = grid.width - 1; x >= 0; --x) {
+      relax(x, y, x + 1, y, c1), relax(x, y, x, y + 1, c1), relax(x, y, x + 1, y + 1, c2), relax(x, y, x - 1, y + 1, c2);
+    }
+  const Eigen::Vector3d center = scene.FurnitureBounds().Empty() ? scene.Bounds().Center() : scene.FurnitureBounds().Center();
+  double best = -1.0;
+  sim::BasePose start;
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      const std::size_t i = grid.Index(x, y);
+      if (blocked[i]) continue;
+      const Eigen::Vector2d xy = grid.CellCenter(x, y);
+      // Quantise clearance so that the tie-break towards the centre matters.
+      const double score = std::floor(std::min(clearance[i], 1.0) / 0.1) - 1e-3 * (xy - center.head<2>()).norm();
+      if (score > best) {
+        best = score;
+        start.xy_m = xy;
+        start.theta_rad = std::atan2(center.y() - xy.y(), center.x() - xy.x());
+      }
+    }
+  }
+  if (best < 0.0) throw InputError("scene '" + scene.name() + "': no free floor for the robot to start on");
+  return start;
+}
+
+}  // namespace
+
+struct Scanner::State {
+  State(const SystemConfig& c, const world::Scene& s, const recognition::ModelDatabase& db, std::uint64_t seed)
+      : config(c),
+        scene(s),
+        database(db),
+        rng(DeriveSeed(seed, 0x5343414eull)),
+        camera(s, c.sensor),
+        surface(c.surface_map),
+        occupancy(c.occupancy),
+        segmenter(c.presegmentation),
+        structure_detector(c.structure),
+        recognizer(db, c.recognition),
+        matcher(recognizer, c.scanner.threads),
+        post_segmenter(c.postsegmentation, &matcher),
+        nbv(c.nbv),
+        robot(c.robot, ChooseStart(s, c.robot, c.navigation)),
+        robot_occupancy(occupancy, visited, c.robot.base_radius_m),
+        navigator(robot_occupancy, c.robot.base_radius_m, c.robot.height_m, c.navigation) {
+    record.seed = seed;
+    record.scene = s.name();
+    frustum = planning::CameraFrustum::FromPinhole(c.sensor.width_px, c.sensor.height_px, c.sensor.fx_px,
+                                                   c.sensor.fy_px, c.sensor.min_range_m, c.sensor.max_range_m);
+    visited.push_back(robot.base().xy_m);
+  }
+
+  // --- sensing ---------------------------------------------------------------------------------
+  void TakeView(const geometry::Pose3& T_world_camera, StepRecord* step) {
+    Stopwatch w;
+    const sim::DepthFrame frame = camera.Render(T_world_camera, &rng);
+    Charge(step, "sense", w.ElapsedMs());
+    w.Restart();
+    mapping::FrameAssociation association;
+    surface.Integrate(frame, &association);
+    occupancy.Integrate(frame);
+    Charge(step, "fuse", w.ElapsedMs());
+    w.Restart();
+    segmenter.Update(frame, association, &surface);
+    Charge(step, "segment", w.ElapsedMs());
+    if (observer) observer(frame);
+    ++step->views;
+    ++record.views;
+    step->T_world_camera = T_world_camera;
+    AddTrajectorySample(step->index, true);
+    map_changed = true;
+  }
+
+  void Charge(StepRecord* step, const char* stage, double ms) { step->timing_ms[stage] += ms; }
+
+  void AddTrajectorySample(int step_index, bool view) {
+    TrajectorySample s;
+    s.time_s = robot.travel().time_s;
+    s.x_m = robot.base().xy_m.x();
+    s.y_m = robot.base().xy_m.y();
+    s.theta_rad = robot.base().theta_rad;
+    s.T_world_camera = robot.CameraPose();
+    s.view = view;
+    s.step = step_index;
+    record.trajectory.push_back(s);
+  }
+
+  // Moves the robot so its camera takes T (already checked reachable when `plan` is given).
+  bool MoveCamera(const geometry::Pose3& T_world_camera, StepRecord* step) {
+    const double before_m = robot.travel().distance_m;
+    const double before_s = robot.travel().time_s;
+    sim::ReachPlan plan = robot.PlanTo(T_world_camera, navigator);
+    if (!plan.ok()) return false;
+    robot.Execute(plan);
+    for (const auto& w : plan.path.waypoints) visited.push_back(w);
+    visited.push_back(robot.base().xy_m);
+    step->travel_m += robot.travel().distance_m - before_m;
+    step->timing_ms["navigate_sim"] += 1e3 * (robot.travel().time_s - before_s);
+    TakeView(plan.T_world_camera, step);
+    return true;
+  }
+
+  // Turning in place (arm yaw and pitch only): no navigation needed, so it works before any map.
+  void TurnInPlaceView(const geometry::Pose3& T_world_camera, StepRecord* step) {
+    sim::ReachPlan plan;
+    plan.status = sim::ReachStatus::kOk;
+    plan.base = robot.base();
+    double yaw = 0.0, pitch = 0.0;
+    geometry::YawPitchOfCamera(T_world_camera, &yaw, &pitch);
+    plan.arm = robot.arm();
+    plan.arm.camera_offset_base_m.setZero();
+    plan.arm.camera_height_m = T_world_camera.translation().z();
+    plan.arm.yaw_rel_rad = geometry::WrapAngle(yaw - plan.base.theta_rad);
+    plan.arm.pitch_rad = pitch;
+    plan.T_world_camera = sim::Robot::CameraPoseOf(plan.base, plan.arm);
+    plan.path.status = sim::PlanStatus::kReached;
+    plan.path.waypoints = {robot.base().xy_m};
+    plan.time_s = config.robot.arm_move_s;
+    const double before_s = robot.travel().time_s;
+    robot.Execute(plan);
+    step->timing_ms["navigate_sim"] += 1e3 * (robot.travel().time_s - before_s);
+    TakeView(plan.T_world_camera, step);
+  }
+
+  // --- analysis: C, R, complete / noise objects ---------------------------------------------------
+  void Analyze(StepRecord* step) {
+    Stopwatch w;
+    structure = structure_detector.Update(&surface);
+    const segmentation::ComponentGraph& graph = segmenter.Components(&surface);
+    Charge(step, "segment", w.ElapsedMs());
+    w.Restart();
+    matcher.set_graph(&graph);
+    segmentation::PostSegmenterInput input;
+    std::set<std::int32_t> included;
+    for (const auto& c : graph.components()) {
+      if (done_labels.count(c.label)) continue;
+      auto& rev = match_revision[c.label];
+      const double n = static_cast<double>(c.points.size());
+      if (rev.first == 0 || std::abs(n - rev.second) > config.scanner.rematch_growth_fraction * rev.second) {
+        ++rev.first;
+        rev.second = n;
+      }
+      auto noise = noise_labels.find(c.label);
+      if (noise != noise_labels.end()) {
+        if (noise->second == rev.first) continue;
+        noise_labels.erase(noise);
+      }
+      input.components.push_back({c.label, rev.first});
+      included.insert(c.label);
+    }
+    for (const auto& [a, b] : graph.Edges()) {
+      if (included.count(a) && included.count(b)) input.edges.emplace_back(a, b);
+    }
+    post = post_segmenter.Update(input);
+    Charge(step, "recognize", w.ElapsedMs());
+    step->num_components = static_cast<int>(input.components.size());
+    step->num_objects = static_cast<int>(post.objects.size());
+
+    // Objects of this step, keyed by their smallest component label.
+    objects.clear();
+    for (std::size_t k = 0; k < post.objects.size(); ++k) {
+      const auto& r = post.objects[k];
+      const int id = r.component_ids.front();
+      if (r.status == segmentation::ObjectStatus::kComplete && r.best_model() != nullptr) {
+        CompletedObject done;
+        done.id = id;
+        done.model = *r.best_model();
+        done.objectness = r.objectness;
+        done.labels = r.component_ids;
+        for (auto l : r.component_ids) done_labels.insert(l);
+        completed.push_back(done);
+        if (current_ooi == id) current_ooi = -1;
+        continue;
+      }
+      if (r.status == segmentation::ObjectStatus::kNoise && config.scanner.remove_noise) {
+        for (auto l : r.component_ids) noise_labels[l] = match_revision[l].first;
+        continue;
+      }
+      objects.push_back(static_cast<int>(k));
+    }
+  }
+
+  // Points, centre and area of a post-segmented object.
+  void ObjectGeometry(const segmentation::PostSegmentedObject& r, std::vector<Eigen::Vector3f>* points,
+                      geometry::Aabb3* bounds, double* area_m2, std::size_t* num_points) const {
+    const segmentation::ComponentGraph& graph = segmenter_graph();
+    if (points) points->clear();
+    *bounds = geometry::Aabb3();
+    *area_m2 = 0.0;
+    *num_points = 0;
+    for (auto label : r.component_ids) {
+      const segmentation::Component* c = graph.Find(label);
+      if (c == nullptr) continue;
+      if (points) points->insert(points->end(), c->points.begin(), c->points.end());
+      bounds->Extend(c->bounds);
+      *area_m2 += c->area_m2;
+      *num_points += c->points.size();
+    }
+  }
+  const segmentation::ComponentGraph& segmenter_graph() const { return *graph_cache; }
+
+  // --- one step ------------------------------------------------------------------------------------
+  bool ScanObjectStep(StepRecord* step) {
+    const planning::RobotView view{robot.CameraPose().translation(), robot.CameraPose().linear().col(2)};
+    while (true) {
+      std::vector<planning::NboObject> candidates;
+      std::vector<int> candidate_object;  // index into post.objects
+      for (int k : objects) {
+        const auto& r = post.objects[k];
+        const int id = r.component_ids.front();
+        if (given_up.count(id)) continue;
+        geometry::Aabb3 bounds;
+        double area = 0.0;
+        std::size_t n = 0;
+        ObjectGeometry(r, nullptr, &bounds, &area, &n);
+        if (static_cast<int>(n) < config.scanner.min_object_elements) continue;
+        planning::NboObject o;
+        o.id = id;
+        o.objectness = r.objectness;
+        o.center_world = bounds.Center();
+        o.area_m2 = area;
+        o.views_spent = views_spent[id];
+        candidates.push_back(o);
+        candidate_object.push_back(k);
+      }
+      if (candidates.empty()) return false;
+      Stopwatch w;
+      const planning::NboResult nbo = planning::SelectNextBestObject(candidates, view, current_ooi, config.nbo);
+      Charge(step, "nbo", w.ElapsedMs());
+      for (int id : nbo.budget_spent_ids) given_up.insert(id);
+      if (nbo.status != planning::NboStatus::kOk) return false;
+      int k = -1;
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        if (candidates[i].id == nbo.chosen_id) k = candidate_object[i];
+      }
+      const auto& gamma = post.objects[k];
+      w.Restart();
+      std::vector<Eigen::Vector3f> gamma_points;
+      geometry::Aabb3 bounds;
+      double area = 0.0;
+      std::size_t n = 0;
+      ObjectGeometry(gamma, &gamma_points, &bounds, &area, &n);
+      // Shape priors: the aligned full models of M(gamma).
+      std::vector<std::vector<Eigen::Vector3f>> model_points;
+      std::vector<planning::ModelHypothesis> hypotheses;
+      const auto& models = gamma.full_model_matches.models;
+      model_points.reserve(models.size());
+      for (const auto& m : models) {
+        if (m.entry_id < 0) continue;
+        const auto& entry = database.entries()[m.entry_id];
+        std::vector<Eigen::Vector3f> pts;
+        pts.reserve(entry.points.size());
+        for (const auto& p : entry.points) pts.push_back((m.T_world_model * p.cast<double>()).cast<float>());
+        model_points.push_back(std::move(pts));
+        if (model_points.size() >= 15) break;
+      }
+      for (std::size_t i = 0; i < model_points.size(); ++i) {
+        planning::ModelHypothesis h;
+        h.model_id = models[i].model_id;
+        h.objectness = std::max(0.0, models[i].objectness);
+        h.points_world = &model_points[i];
+        hypotheses.push_back(h);
+      }
+      if (occluders_stale) {
+        occluders = surface.AllPoints().points;
+        occluders_stale = false;
+      }
+      planning::NextBestViewInput input;
+      input.gamma_points_world = &gamma_points;
+      input.models = hypotheses;
+      input.occluder_points_world = &occluders;
+      input.frustum = frustum;
+      input.has_camera_position = true;
+      input.camera_position_world = robot.CameraPose().translation();
+      const double radius = 0.5 * bounds.Diagonal();
+      MapViewValidator validator(occupancy, robot, navigator, std::max(config.scanner.line_of_sight_skip_m, radius));
+      const planning::NextBestViewResult result = nbv.Plan(input, &validator);
+      Charge(step, "nbv", w.ElapsedMs());
+      for (const auto& c : result.candidates) {
+        step->nbv_candidates.push_back({c.T_world_camera, planning::ToString(c.validity), c.gain.gain});
+      }
+      const int id = nbo.chosen_id;
+      if (result.status != planning::NbvStatus::kOk ||
+          !MoveCamera(result.candidates[result.best_index].T_world_camera, step)) {
+        given_up.insert(id);
+        step->nbv_candidates.clear();
+        if (current_ooi == id) current_ooi = -1;
+        continue;
+      }
+      step->action = (id == current_ooi) ? "nbv" : "nbo";
+      if (id != current_ooi) ++record.nbo_count;
+      current_ooi = id;
+      step->ooi = id;
+      ++views_spent[id];
+      ++record.nbv_views;
+      return true;
+    }
+  }
+
+  // Exploration: returns the termination when there is nothing left to do.
+  Termination ExploreStep(StepRecord* step) {
+    step->action = "frontier";
+    const std::vector<mapping::FrontierGoal> goals =
+        mapping::FindFloorFrontiers(surface, occupancy, structure, config.frontiers);
+    std::vector<planning::FrontierCandidate> frontiers;
+    for (const auto& g : goals) {
+      frontiers.push_back({Eigen::Vector3d(g.centroid_m.x(), g.centroid_m.y(), 0.0), g.size_cells});
+    }
+    const Eigen::Vector2d from = robot.base().xy_m;
+    std::map<std::size_t, Eigen::Vector2d> snapped;
+    auto path_length = [&](const Eigen::Vector3d& goal) -> std::optional<double> {
+      Eigen::Vector2d free_xy;
+      if (!navigator.NearestFree(goal.head<2>(), config.scanner.frontier_max_snap_m, &free_xy)) return std::nullopt;
+      const sim::Path2D path = navigator.Plan(from, free_xy);
+      if (!path.ok()) return std::nullopt;
+      return path.length_m;
+    };
+    const planning::FrontierChoice choice =
+        planning::ChooseFrontier(frontiers, path_length, visited_goals, config.exploration);
+    const planning::ScanAction action = planning::DecideAction(false, choice.status);
+    if (action == planning::ScanAction::kDone) return Termination::kDone;
+    if (action == planning::ScanAction::kStuck) return Termination::kStuck;
+    const Eigen::Vector3d goal = frontiers[choice.best_index].centroid_world;
+    visited_goals.push_back(goal);
+    Eigen::Vector2d base_xy;
+    if (!navigator.NearestFree(goal.head<2>(), config.scanner.frontier_max_snap_m, &base_xy)) return Termination::kRunning;
+    // Look around at the frontier, starting towards the unexplored side.
+    const double heading = std::atan2(goal.y() - from.y(), goal.x() - from.x());
+    planning::ExplorationOptions look = config.exploration;
+    look.look_around_yaw_steps = config.scanner.frontier_views;
+    look.look_around_pitches_deg = {config.scanner.explore_pitch_deg};
+    const auto views = planning::LookAroundViews(
+        Eigen::Vector3d(base_xy.x(), base_xy.y(), config.scanner.start_camera_height_m), heading, look);
+    bool moved = false;
+    for (const auto& T : views) {
+      if (!moved) {
+        moved = MoveCamera(T, step);
+        if (!moved) break;
+      } else {
+        TurnInPlaceView(T, step);
+      }
+      step->look_around = true;
+    }
+    return Termination::kRunning;
+  }
+
+  void RefreshNavigation() {
+    if (!map_changed) return;
+    navigator.Update(robot_occupancy);
+    occluders_stale = true;
+    map_changed = false;
+  }
+
+  const SystemConfig config;
+  const world::Scene& scene;
+  const recognition::ModelDatabase& database;
+  Rng rng;
+  sim::DepthCamera camera;
+  mapping::SurfaceMap surface;
+  mapping::OccupancyMap occupancy;
+  segmentation::IncrementalSegmenter segmenter;
+  mapping::StructureDetector structure_detector;
+  mapping::StructureResult structure;
+  recognition::Recognizer recognizer;
+  RecognizerMatcher matcher;
+  segmentation::PostSegmenter post_segmenter;
+  planning::NextBestView nbv;
+  planning::CameraFrustum frustum;
+  sim::Robot robot;
+  std::vector<Eigen::Vector2d> visited;
+  RobotOccupancy robot_occupancy;
+  sim::Navigator navigator;
+  FrameObserver observer;
+  RunRecord record;
+
+  const segmentation::ComponentGraph* graph_cache = nullptr;
+  segmentation::PostSegmentation post;
+  std::vector<int> objects;  // partial objects of `post` (indices)
+  std::vector<CompletedObject> completed;
+  std::set<std::int32_t> done_labels;
+  std::map<std::int32_t, std::uint64_t> noise_labels;  // label -> match revision when found noise
+  std::map<std::int32_t, std::pair<std::uint64_t, double>> match_revision;  // label -> (revision, size)
+  std::set<int> given_up;
+  std::map<int, int> views_spent;
+  std::vector<Eigen::Vector3d> visited_goals;
+  std::vector<Eigen::Vector3f> occluders;
+  bool occluders_stale = true;
+  bool map_changed = true;
+  int current_ooi = -1;
+  Stopwatch wall;
+};
+
+Scanner::Scanner(const SystemConfig& config, const world::Scene& scene, const recognition::ModelDatabase& database,
+                 std::uint64_t seed) {
+  config.Validate();
+  if (!database.finalized()) throw InputError("model database is not finalized");
+  if (database.models().empty()) throw InputError("model database is empty");
+  state_ = std::make_unique<State>(config, scene, database, seed);
+}
+
+Scanner::~Scanner() = default;
+
+void Scanner::set_frame_observer(FrameObserver observer) { state_->observer = std::move(observer); }
+
+const RunRecord& Scanner::record() const { return state_->record; }
+const mapping::SurfaceMap& Scanner::surface_map() const { return state_->surface; }
+
+bool Scanner::Step() {
+  State& s = *state_;
+  RunRecord& rec = s.record;
+  if (rec.terminated != Termination::kRunning) return false;
+  if (static_cast<int>(rec.steps.size()) >= s.config.scanner.max_steps) {
+    rec.terminated = Termination::kMaxSteps;
+    return false;
+  }
+  StepRecord step;
+  step.index = static_cast<int>(rec.steps.size());
+  Stopwatch step_wall;
+  if (step.index == 0) {
+    // Start by looking around in place.
+    step.action = "frontier";
+    step.look_around = true;
+    s.AddTrajectorySample(0, false);
+    const auto views = planning::LookAroundViews(
+        Eigen::Vector3d(s.robot.base().xy_m.x(), s.robot.base().xy_m.y(), s.config.scanner.start_camera_height_m),
+        s.robot.base().theta_rad, s.config.exploration);
+    for (const auto& T : views) s.TurnInPlaceView(T, &step);
+  } else {
+    s.RefreshNavigation();
+    s.Analyze(&step);
+    s.graph_cache = &s.segmenter.Components(&s.surface);
+    if (!s.ScanObjectStep(&step)) {
+      const Termination t = s.ExploreStep(&step);
+      if (t != Termination::kRunning) {
+        rec.terminated = t;
+        return false;
+      }
+      if (step.views == 0) {
+        // The chosen frontier could not be reached this time; it is remembered as visited.
+      }
+    }
+  }
+  rec.travel_m = s.robot.travel().distance_m;
+  for (const auto& [stage, ms] : step.timing_ms) {
+    const double sec = ms / 1e3;
+    if (stage == "sense") rec.timing_s.sense += sec;
+    if (stage == "fuse") rec.timing_s.fuse += sec;
+    if (stage == "segment") rec.timing_s.segment += sec;
+    if (stage == "recognize") rec.timing_s.recognize += sec;
+    if (stage == "nbo") rec.timing_s.nbo += sec;
+    if (stage == "nbv") rec.timing_s.nbv += sec;
+    if (stage == "navigate_sim") rec.timing_s.navigate_sim += sec;
+  }
+  step.timing_ms["wall"] = step_wall.ElapsedMs();
+  rec.steps.push_back(std::move(step));
+  return true;
+}
+
+const RunRecord& Scanner::Run(const ProgressCallback& progress) {
+  State& s = *state_;
+  while (Step()) {
+    ReportProgress(progress, static_cast<double>(s.record.steps.size()) / s.config.scanner.max_steps,
+                   "step " + std::to_string(s.record.steps.size()) + ", " + std::to_string(s.completed.size()) +
+                       " objects complete");
+  }
+  // Final analysis of what the last views showed, and the object list.
+  StepRecord final_step;
+  s.RefreshNavigation();
+  s.Analyze(&final_step);
+  s.graph_cache = &s.segmenter.Components(&s.surface);
+  RunRecord& rec = s.record;
+  rec.objects.clear();
+  for (const auto& c : s.completed) {
+    ObjectRecord o;
+    o.id = c.id;
+    o.category = c.model.category;
+    o.model_index = c.model.model_id;
+    if (c.model.model_id >= 0) o.model = s.database.models()[c.model.model_id].name;
+    o.objectness = c.objectness;
+    o.complete = true;
+    o.T_world_model = c.model.T_world_model;
+    o.labels = c.labels;
+    rec.objects.push_back(o);
+  }
+  for (int k : s.objects) {
+    const auto& r = s.post.objects[k];
+    ObjectRecord o;
+    o.id = r.component_ids.front();
+    o.category = r.category;
+    if (const auto* best = r.best_model()) {
+      o.model_index = best->model_id;
+      if (best->model_id >= 0) o.model = s.database.models()[best->model_id].name;
+      o.T_world_model = best->T_world_model;
+    }
+    o.objectness = r.objectness;
+    o.given_up = s.given_up.count(o.id) > 0;
+    o.labels = r.component_ids;
+    rec.objects.push_back(o);
+  }
+  // Points and majority ground-truth instance per object.
+  std::map<std::int32_t, int> object_of_label;
+  for (std::size_t i = 0; i < rec.objects.size(); ++i) {
+    for (auto l : rec.objects[i].labels) object_of_label[l] = static_cast<int>(i);
+  }
+  std::vector<std::map<std::int32_t, int>> votes(rec.objects.size());
+  for (std::size_t e = 0; e < s.surface.size(); ++e) {
+    if (s.surface.structure(e) != mapping::Structure::kNone) continue;
+    auto it = object_of_label.find(s.surface.label(e));
+    if (it == object_of_label.end()) continue;
+    ++rec.objects[it->second].points;
+    ++votes[it->second][s.surface.gt_instance(e)];
+  }
+  for (std::size_t i = 0; i < rec.objects.size(); ++i) {
+    int best = 0;
+    for (const auto& [inst, n] : votes[i]) {
+      if (n > best && inst > 0) {
+        best = n;
+        rec.objects[i].gt_instance = inst;
+      }
+    }
+  }
+  rec.timing_s.total = s.wall.ElapsedSeconds();
+  return rec;
+}
+
+void Scanner::ElementObjects(std::vector<int>* object_id, std::vector<int>* category_id) const {
+  const State& s = *state_;
+  std::map<std::int32_t, const ObjectRecord*> object_of_label;
+  for (const auto& o : s.record.objects) {
+    for (auto l : o.labels) object_of_label[l] = &o;
+  }
+  object_id->assign(s.surface.size(), -1);
+  category_id->assign(s.surface.size(), -1);
+  for (std::size_t e = 0; e < s.surface.size(); ++e) {
+    const auto st = s.surface.structure(e);
+    if (st == mapping::Structure::kFloor) {
+      (*category_id)[e] = world::CategoryId(world::Category::kFloor);
+      continue;
+    }
+    if (st == mapping::Structure::kWall) {
+      (*category_id)[e] = world::CategoryId(world::Category::kWall);
+      continue;
+    }
+    auto it = object_of_label.find(s.surface.label(e));
+    if (it == object_of_label.end()) continue;
+    (*object_id)[e] = it->second->id;
+    if (it->second->category) (*category_id)[e] = world::CategoryId(*it->second->category);
+  }
+}
+
+}  // namespace objscan::scanning

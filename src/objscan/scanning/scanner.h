@@ -1,0 +1,51 @@
+#pragma once
+// The object-aware scanning loop (Algorithm 1 of the paper) in the simulator: sense, fuse,
+// pre-segment, post-segment with the recognizer, choose the next best object and its next best view
+// (or a floor frontier when no object is left), move, repeat; complete objects are replaced by their
+// best database model and leave the scene surface T. The simulator's ground truth is used only to
+// place the robot at the start and to render frames; the method reads nothing else of it.
+#include <functional>
+#include <memory>
+#include <set>
+#include <string>
+
+#include "objscan/common/progress.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/scanning/run_record.h"
+#include "objscan/scanning/system_config.h"
+#include "objscan/sim/depth_frame.h"
+#include "objscan/world/scene.h"
+
+namespace objscan::scanning {
+
+// Called with every frame the robot takes (e.g. to accumulate ground-truth coverage for evaluation).
+using FrameObserver = std::function<void(const sim::DepthFrame& frame)>;
+
+class Scanner {
+ public:
+  // `scene` is the simulated world; `database` must be finalized. Both must outlive the scanner.
+  // Throws InputError when the scene has no free floor to start on.
+  Scanner(const SystemConfig& config, const world::Scene& scene, const recognition::ModelDatabase& database,
+          std::uint64_t seed);
+  ~Scanner();
+  Scanner(const Scanner&) = delete;
+  Scanner& operator=(const Scanner&) = delete;
+
+  void set_frame_observer(FrameObserver observer);
+
+  // One iteration; returns false once terminated.
+  bool Step();
+  // Steps until terminated; progress reports steps against scanner.max_steps.
+  const RunRecord& Run(const ProgressCallback& progress = nullptr);
+
+  const RunRecord& record() const;
+  const mapping::SurfaceMap& surface_map() const;
+  // Per map element: the output object id (-1 none) and category id (-1 unrecognized / structural).
+  void ElementObjects(std::vector<int>* object_id, std::vector<int>* category_id) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace objscan::scanning

@@ -1,0 +1,47 @@
+#pragma once
+// Options of the scanning loop itself (the stages have their own sections).
+#include "objscan/common/config.h"
+
+namespace objscan::scanning {
+
+struct ScannerOptions {
+  int max_steps = 120;                 // terminated "max_steps" beyond this
+  double start_camera_height_m = 1.2;  // camera height of look-around views
+  double explore_pitch_deg = -25.0;    // pitch of the views taken on arriving at a frontier
+  int frontier_views = 4;              // views turning in place at a reached frontier
+  // The matcher is asked again about a component only when it grew or shrank by this share since
+  // it was last asked (a new frame touches most components a little).
+  double rematch_growth_fraction = 0.15;
+  int min_object_elements = 60;        // smaller objects are not candidates for the next best object
+  bool remove_noise = true;            // paper: objects with O(r) < 0.05 leave T
+  double line_of_sight_skip_m = 0.25;  // occupancy this close to the object's centre does not block
+  double frontier_max_snap_m = 1.0;    // a frontier goal moves to the nearest free cell within this
+  int threads = 0;                     // 0 = hardware concurrency; results do not depend on it
+
+  template <class V>
+  void Visit(V& v) {
+    v("max_steps", max_steps);
+    v("start_camera_height_m", start_camera_height_m);
+    v("explore_pitch_deg", explore_pitch_deg);
+    v("frontier_views", frontier_views);
+    v("rematch_growth_fraction", rematch_growth_fraction);
+    v("min_object_elements", min_object_elements);
+    v("remove_noise", remove_noise);
+    v("line_of_sight_skip_m", line_of_sight_skip_m);
+    v("frontier_max_snap_m", frontier_max_snap_m);
+    v("threads", threads);
+  }
+  void Validate() const {
+    config::Require(max_steps >= 1, "scanner.max_steps", "must be >= 1");
+    config::RequireInRange("scanner.start_camera_height_m", start_camera_height_m, 0.3, 1.8);
+    config::RequireInRange("scanner.explore_pitch_deg", explore_pitch_deg, -70.0, 30.0);
+    config::Require(frontier_views >= 1, "scanner.frontier_views", "must be >= 1");
+    config::RequireNonNegative("scanner.rematch_growth_fraction", rematch_growth_fraction);
+    config::Require(min_object_elements >= 1, "scanner.min_object_elements", "must be >= 1");
+    config::RequireNonNegative("scanner.line_of_sight_skip_m", line_of_sight_skip_m);
+    config::RequirePositive("scanner.frontier_max_snap_m", frontier_max_snap_m);
+    config::Require(threads >= 0, "scanner.threads", "must be >= 0");
+  }
+};
+
+}  // namespace objscan::scanning

@@ -1,0 +1,48 @@
+#pragma once
+// Step 1 of the incremental segmentation (Tateno et al. 2015): one depth frame cut into segments
+// along depth jumps and concave folds. Convex folds (box edges seen from outside) do not cut, so
+// segments are near-convex surface patches such as a chair's seat, back or legs.
+#include <cstdint>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/mapping/vertex_normal_map.h"
+#include "objscan/sim/depth_frame.h"
+
+namespace objscan::segmentation {
+
+struct FrameSegmenterOptions {
+  // Neighbouring pixels are on different surfaces when |dz| > k * z^2 (z in metres).
+  double depth_jump_per_m = 0.02;
+  // Concave fold between pixel i and a neighbour j: (v_j - v_i) . n_i > concave_min_offset_m and
+  // 1 - n_i . n_j > concavity_threshold (0.06 ~ 20 degrees between the normals).
+  double concavity_threshold = 0.06;
+  double concave_min_offset_m = 0.0;
+  int neighbor_step_px = 2;   // the concavity test compares pixels this far apart
+  int min_segment_px = 150;   // smaller segments are dropped (their pixels stay unlabelled)
+
+  template <class V>
+  void Visit(V& v) {
+    v("depth_jump_per_m", depth_jump_per_m);
+    v("concavity_threshold", concavity_threshold);
+    v("concave_min_offset_m", concave_min_offset_m);
+    v("neighbor_step_px", neighbor_step_px);
+    v("min_segment_px", min_segment_px);
+  }
+  void Validate() const;
+};
+
+struct FrameSegmentation {
+  int width = 0;
+  int height = 0;
+  std::vector<std::int32_t> segment;  // per pixel: segment index in [0, num_segments) or -1
+  std::vector<std::int32_t> segment_size_px;
+  int num_segments() const { return static_cast<int>(segment_size_px.size()); }
+};
+
+// Segments `frame` given its vertex/normal map (from mapping::ComputeVertexNormalMap). `out`'s
+// storage is reused. Segment indices follow the first pixel of each segment in row-major order.
+void SegmentFrame(const sim::DepthFrame& frame, const mapping::VertexNormalMap& vertex_normals,
+                  const FrameSegmenterOptions& options, FrameSegmentation* out);
+
+}  // namespace objscan::segmentation

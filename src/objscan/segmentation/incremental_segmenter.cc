@@ -1,0 +1,243 @@
+#include "objscan/segmentation/incremental_segmenter.h"
+
+#include <algorithm>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace objscan::segmentation {
+
+void IncrementalSegmenterOptions::Validate() const {
+  frame.Validate();
+  config::RequireInRange("propagate_min_pixels", propagate_min_pixels, 1, 1 << 24);
+  config::RequireInRange("propagate_min_share", propagate_min_share, 0.0, 1.0);
+  config::RequireInRange("merge_min_share", merge_min_share, 0.0, 1.0);
+  config::RequireInRange("merge_min_pixels", merge_min_pixels, 1, 1 << 24);
+  config::RequireInRange("merge_min_frames", merge_min_frames, 1, 1000);
+  config::RequirePositive("vote_weight", vote_weight);
+  config::RequireInRange("min_component_elements", min_component_elements, 1, 1 << 24);
+}
+
+IncrementalSegmenter::IncrementalSegmenter(const IncrementalSegmenterOptions& options) : options_(options) {
+  options_.Validate();
+  parent_.push_back(0);
+}
+
+std::int32_t IncrementalSegmenter::FindRoot(std::int32_t label) {
+  std::int32_t root = label;
+  while (parent_[root] != root) root = parent_[root];
+  while (parent_[label] != root) {
+    const std::int32_t next = parent_[label];
+    parent_[label] = root;
+    label = next;
+  }
+  return root;
+}
+
+SegmenterUpdateStats IncrementalSegmenter::Update(const sim::DepthFrame& frame,
+                                                  const mapping::FrameAssociation& association,
+                                                  mapping::SurfaceMap* map) {
+  SegmenterUpdateStats stats;
+  SegmentFrame(frame, association.vertex_normals, options_.frame, &frame_segmentation_);
+  const FrameSegmentation& seg = frame_segmentation_;
+  const int num_segments = seg.num_segments();
+  stats.frame_segments = num_segments;
+  const std::size_t n = seg.segment.size();
+  if (association.pixel_element.size() != n) {
+    throw InputError("IncrementalSegmenter::Update: association does not belong to this frame");
+  }
+
+  // Step 2: overlap of each frame segment with the global labels of its pixels' elements.
+  struct Overlap {
+    std::int32_t label;
+    int count;
+  };
+  std::vector<std::vector<Overlap>> overlaps(num_segments);
+  std::vector<int> labelled(num_segments, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t s = seg.segment[i];
+    const std::int32_t e = association.pixel_element[i];
+    if (s < 0 || e < 0) continue;
+    const std::int32_t l = map->label(e);
+    if (l <= 0) continue;
+    ++labelled[s];
+    std::vector<Overlap>& o = overlaps[s];
+    if (!o.empty() && o.back().label == l) {
+      ++o.back().count;
+      continue;
+    }
+    auto it = std::find_if(o.begin(), o.end(), [l](const Overlap& x) { return x.label == l; });
+    if (it != o.end()) {
+      ++it->count;
+      std::iter_swap(it, o.end() - 1);  // recently seen label last: consecutive pixels repeat it
+    } else {
+      o.push_back({l, 1});
+    }
+  }
+
+  std::vector<std::int32_t> segment_label(num_segments, 0);
+  std::vector<std::int32_t> merged;
+  for (int s = 0; s < num_segments; ++s) {
+    std::vector<Overlap>& o = overlaps[s];
+    std::sort(o.begin(), o.end(), [](const Overlap& a, const Overlap& b) {
+      return a.count != b.count ? a.count > b.count : a.label < b.label;
+    });
+    const double size = seg.segment_size_px[s];
+    if (!o.empty() && o[0].count >= options_.propagate_min_pixels &&
+        o[0].count >= options_.propagate_min_share * size) {
+      segment_label[s] = o[0].label;
+      ++stats.propagated;
+      // Step 3: further labels covering much of this segment were the same surface.
+      for (std::size_t k = 1; k < o.size(); ++k) {
+        if (o[k].count < options_.merge_min_pixels || o[k].count < options_.merge_min_share * labelled[s]) break;
+        const auto key = std::make_pair(std::min(o[0].label, o[k].label), std::max(o[0].label, o[k].label));
+        if (++merge_evidence_[key] < options_.merge_min_frames) continue;
+        const std::int32_t ra = FindRoot(o[0].label), rb = FindRoot(o[k].label);
+        if (ra == rb) continue;
+        parent_[std::max(ra, rb)] = std::min(ra, rb);
+        merged.push_back(std::max(ra, rb));
+        ++stats.merges;
+      }
+    } else {
+      segment_label[s] = next_label_++;
+      parent_.push_back(segment_label[s]);
+      ++stats.new_labels;
+    }
+  }
+  // Apply merges: every merged label is rewritten to its root in the map.
+  if (!merged.empty()) {
+    std::map<std::int32_t, std::vector<std::int32_t>> groups;
+    for (std::int32_t l : merged) groups[FindRoot(l)].push_back(l);
+    for (auto& [root, from] : groups) {
+      std::sort(from.begin(), from.end());
+      map->RelabelAll(from, root);
+    }
+    for (std::int32_t& l : segment_label) l = FindRoot(l);
+  }
+
+  // Step 4: confidence-weighted voting.
+  const float weight = static_cast<float>(options_.vote_weight);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t s = seg.segment[i];
+    const std::int32_t e = association.pixel_element[i];
+    if (s < 0 || e < 0) continue;
+    map->VoteLabel(static_cast<std::size_t>(e), segment_label[s], weight);
+  }
+  return stats;
+}
+
+namespace {
+
+std::int32_t FloorDiv2(std::int32_t x) { return x >= 0 ? x / 2 : -((-x + 1) / 2); }
+
+std::uint64_t PackCell(std::int32_t x, std::int32_t y, std::int32_t z) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x) & 0x1FFFFF) << 42) |
+         (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y) & 0x1FFFFF) << 21) |
+         (static_cast<std::uint64_t>(static_cast<std::uint32_t>(z) & 0x1FFFFF));
+}
+
+}  // namespace
+
+const ComponentGraph& IncrementalSegmenter::Components(mapping::SurfaceMap* map) {
+  changed_labels_ = map->TakeDirtyLabels();
+  std::int32_t max_label = 0;
+  for (std::size_t i = 0; i < map->size(); ++i) max_label = std::max(max_label, map->label(i));
+  for (std::int32_t l : changed_labels_) max_label = std::max(max_label, l);
+  std::vector<std::uint8_t> dirty(static_cast<std::size_t>(max_label) + 1, 0);
+  for (std::int32_t l : changed_labels_) dirty[l] = 1;
+
+  // Keep the unchanged components, rebuild the dirty ones in one pass over the map.
+  std::map<std::int32_t, Component> rebuilt;
+  for (std::int32_t l : changed_labels_) rebuilt[l].label = l;
+  const double voxel_area = map->voxel_size_m() * map->voxel_size_m();
+  for (std::size_t i = 0; i < map->size(); ++i) {
+    const std::int32_t l = map->label(i);
+    if (l <= 0 || !dirty[l] || map->structure(i) != mapping::Structure::kNone) continue;
+    Component& c = rebuilt[l];
+    c.points.push_back(map->position(i));
+    c.normals.push_back(map->normal(i));
+    c.bounds.Extend(map->position(i).cast<double>());
+  }
+  ++revision_;
+  std::vector<Component> components;
+  components.reserve(graph_.components_.size() + rebuilt.size());
+  for (Component& c : graph_.components_) {
+    if (static_cast<std::size_t>(c.label) < dirty.size() && dirty[c.label]) continue;
+    components.push_back(std::move(c));
+  }
+  for (auto& [label, c] : rebuilt) {
+    if (static_cast<int>(c.points.size()) < options_.min_component_elements) continue;
+    c.area_m2 = c.points.size() * voxel_area;
+    c.revision = revision_;
+    components.push_back(std::move(c));
+  }
+  std::sort(components.begin(), components.end(),
+            [](const Component& a, const Component& b) { return a.label < b.label; });
+
+  // Adjacency over 2-voxel cells: labels in the same or 26-neighbouring cells touch.
+  std::vector<std::uint8_t> present(static_cast<std::size_t>(max_label) + 1, 0);
+  for (const Component& c : components) present[c.label] = 1;
+  std::unordered_map<std::uint64_t, std::uint32_t> cell_index;
+  std::vector<geometry::VoxelKey> cell_key;
+  std::vector<std::int32_t> cell_label;  // first label seen in the cell
+  std::unordered_map<std::uint32_t, std::vector<std::int32_t>> extra;  // further labels of a cell
+  for (std::size_t i = 0; i < map->size(); ++i) {
+    const std::int32_t l = map->label(i);
+    if (l <= 0 || !present[l] || map->structure(i) != mapping::Structure::kNone) continue;
+    const geometry::VoxelKey& k = map->key(i);
+    const geometry::VoxelKey ck{FloorDiv2(k.x), FloorDiv2(k.y), FloorDiv2(k.z)};
+    auto [it, inserted] = cell_index.emplace(PackCell(ck.x, ck.y, ck.z), static_cast<std::uint32_t>(cell_key.size()));
+    if (inserted) {
+      cell_key.push_back(ck);
+      cell_label.push_back(l);
+      continue;
+    }
+    if (cell_label[it->second] == l) continue;
+    std::vector<std::int32_t>& e = extra[it->second];
+    if (std::find(e.begin(), e.end(), l) == e.end()) e.push_back(l);
+  }
+  std::unordered_set<std::uint64_t> edges;
+  auto add_edge = [&edges](std::int32_t a, std::int32_t b) {
+    if (a == b) return;
+    if (a > b) std::swap(a, b);
+    edges.insert((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
+  };
+  std::vector<std::int32_t> here, there;
+  auto labels_of = [&](std::uint32_t c, std::vector<std::int32_t>* out) {
+    out->assign(1, cell_label[c]);
+    auto it = extra.find(c);
+    if (it != extra.end()) out->insert(out->end(), it->second.begin(), it->second.end());
+  };
+  for (std::uint32_t c = 0; c < cell_key.size(); ++c) {
+    labels_of(c, &here);
+    for (std::size_t a = 0; a < here.size(); ++a) {
+      for (std::size_t b = a + 1; b < here.size(); ++b) add_edge(here[a], here[b]);
+    }
+    const geometry::VoxelKey& k = cell_key[c];
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          // Each unordered pair of cells once: only "forward" neighbours.
+          if (dz < 0 || (dz == 0 && (dy < 0 || (dy == 0 && dx <= 0)))) continue;
+          auto it = cell_index.find(PackCell(k.x + dx, k.y + dy, k.z + dz));
+          if (it == cell_index.end()) continue;
+          labels_of(it->second, &there);
+          for (std::int32_t a : here) {
+            for (std::int32_t b : there) add_edge(a, b);
+          }
+        }
+      }
+    }
+  }
+  std::vector<std::vector<std::int32_t>> neighbors(components.size());
+  std::unordered_map<std::int32_t, std::size_t> index_of;
+  for (std::size_t i = 0; i < components.size(); ++i) index_of[components[i].label] = i;
+  for (std::uint64_t e : edges) {
+    const std::int32_t a = static_cast<std::int32_t>(e >> 32), b = static_cast<std::int32_t>(e & 0xFFFFFFFFu);
+    neighbors[index_of[a]].push_back(b);
+    neighbors[index_of[b]].push_back(a);
+  }
+  graph_.Assign(std::move(components), std::move(neighbors));
+  return graph_;
+}
+
+}  // namespace objscan::segmentation

@@ -1,0 +1,95 @@
+#pragma once
+// Incremental pre-segmentation of the scene surface T into near-convex components C (paper §4.1,
+// after Tateno et al. 2015). Per frame:
+//   1. segment the depth frame (FrameSegmenter: depth jumps and concave folds);
+//   2. propagate: a frame segment takes the global label its pixels' map elements carry most, when
+//      that overlap is large enough, else a new label;
+//   3. merge: a frame segment overlapping two global labels substantially (in several frames) shows
+//      they are one surface split by partial views: union-find merges them;
+//   4. vote: every pixel votes its segment's label into its map element, weighted by confidence.
+// Components() then gathers C (label -> points, normals, bounds, area) and the adjacency graph,
+// recomputing only labels that changed.
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "objscan/common/config.h"
+#include "objscan/mapping/surface_map.h"
+#include "objscan/segmentation/component_graph.h"
+#include "objscan/segmentation/frame_segmenter.h"
+
+namespace objscan::segmentation {
+
+struct IncrementalSegmenterOptions {
+  FrameSegmenterOptions frame;
+  // Propagation: the best global label needs at least this many of the segment's pixels and this
+  // share of the segment.
+  int propagate_min_pixels = 30;
+  double propagate_min_share = 0.05;
+  // Merge: a second label overlapping a segment by at least this share of its labelled pixels and
+  // this many pixels, in at least merge_min_frames frames, is merged with the first.
+  double merge_min_share = 0.25;
+  int merge_min_pixels = 100;
+  int merge_min_frames = 2;
+  // Vote weight of one pixel (per frame); closer views naturally vote with more pixels.
+  double vote_weight = 1.0;
+  // Components with fewer elements are left out of C (noise).
+  int min_component_elements = 20;
+
+  template <class V>
+  void Visit(V& v) {
+    v("frame", frame);
+    v("propagate_min_pixels", propagate_min_pixels);
+    v("propagate_min_share", propagate_min_share);
+    v("merge_min_share", merge_min_share);
+    v("merge_min_pixels", merge_min_pixels);
+    v("merge_min_frames", merge_min_frames);
+    v("vote_weight", vote_weight);
+    v("min_component_elements", min_component_elements);
+  }
+  void Validate() const;
+};
+
+struct SegmenterUpdateStats {
+  int frame_segments = 0;
+  int propagated = 0;  // frame segments that took an existing label
+  int new_labels = 0;
+  int merges = 0;
+};
+
+class IncrementalSegmenter {
+ public:
+  explicit IncrementalSegmenter(const IncrementalSegmenterOptions& options = IncrementalSegmenterOptions());
+
+  // Segments `frame` and writes labels into the elements its pixels were fused into
+  // (`association` from SurfaceMap::Integrate of this frame).
+  SegmenterUpdateStats Update(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
+                              mapping::SurfaceMap* map);
+
+  // Components C and their adjacency (elements of two labels within about two voxels: 2-voxel
+  // cells, 26-neighbourhood). Recomputes the labels the map reports dirty since the last call.
+  const ComponentGraph& Components(mapping::SurfaceMap* map);
+  // Labels whose component changed (or vanished) in the last Components() call, ascending.
+  const std::vector<std::int32_t>& changed_labels() const { return changed_labels_; }
+
+  // The last frame's segmentation (for inspection and tests).
+  const FrameSegmentation& last_frame_segmentation() const { return frame_segmentation_; }
+  const IncrementalSegmenterOptions& options() const { return options_; }
+
+ private:
+  std::int32_t FindRoot(std::int32_t label);
+
+  IncrementalSegmenterOptions options_;
+  std::int32_t next_label_ = 1;
+  std::vector<std::int32_t> parent_;  // union-find over labels (index = label)
+  std::map<std::pair<std::int32_t, std::int32_t>, int> merge_evidence_;  // frames seen overlapping
+  FrameSegmentation frame_segmentation_;
+
+  std::map<std::int32_t, Component> cache_;
+  ComponentGraph graph_;
+  std::vector<std::int32_t> changed_labels_;
+  std::uint64_t revision_ = 0;
+};
+
+}  // namespace objscan::segmentation

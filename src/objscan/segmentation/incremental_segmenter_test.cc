@@ -1,0 +1,190 @@
+#include "objscan/segmentation/incremental_segmenter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "objscan/mapping/testing/analytic_world.h"
+#include "objscan/segmentation/segmentation_quality.h"
+
+namespace objscan::segmentation {
+namespace {
+
+using mapping::testing::AnalyticWorld;
+using mapping::testing::LookAt;
+
+struct Scanned {
+  mapping::SurfaceMap map;
+  IncrementalSegmenter segmenter;
+};
+
+void Scan(const AnalyticWorld& world, const std::vector<geometry::Pose3>& poses, std::uint64_t seed, Scanned* s) {
+  Rng rng(seed);
+  mapping::FrameAssociation assoc;
+  for (const geometry::Pose3& T : poses) {
+    const sim::DepthFrame frame = world.Render(T, &rng);
+    s->map.Integrate(frame, &assoc);
+    s->segmenter.Update(frame, assoc, &s->map);
+  }
+}
+
+// Ring of `count` views at `radius` and `height` around `target`.
+std::vector<geometry::Pose3> Ring(const Eigen::Vector3d& target, double radius, double height, int count) {
+  std::vector<geometry::Pose3> poses;
+  for (int k = 0; k < count; ++k) {
+    const double yaw = 2.0 * M_PI * k / count + 0.3;
+    poses.push_back(LookAt(target + Eigen::Vector3d(radius * std::cos(yaw), radius * std::sin(yaw), height), target));
+  }
+  return poses;
+}
+
+// For each ground-truth instance: label -> number of labelled elements.
+std::map<std::int32_t, std::map<std::int32_t, int>> LabelsPerInstance(const mapping::SurfaceMap& map) {
+  std::map<std::int32_t, std::map<std::int32_t, int>> out;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (map.label(i) > 0) ++out[map.gt_instance(i)][map.label(i)];
+  }
+  return out;
+}
+
+std::pair<std::int32_t, double> MajorityLabel(const std::map<std::int32_t, int>& counts) {
+  int total = 0, best = 0;
+  std::int32_t label = 0;
+  for (const auto& [l, c] : counts) {
+    total += c;
+    if (c > best) {
+      best = c;
+      label = l;
+    }
+  }
+  return {label, total > 0 ? static_cast<double>(best) / total : 0.0};
+}
+
+TEST(IncrementalSegmenterTest, FlatFaceStaysOneSegment) {
+  AnalyticWorld world;
+  world.Add(Eigen::Vector3d(-0.75, -0.5, 0.35), Eigen::Vector3d(0.75, 0.5, 0.4), 1);
+  Scanned s;
+  Scan(world, Ring(Eigen::Vector3d(0, 0, 0.4), 1.4, 1.0, 6), 11, &s);
+  // Elements of the top face (normal up).
+  std::map<std::int32_t, int> top;
+  for (std::size_t i = 0; i < s.map.size(); ++i) {
+    if (s.map.normal(i).z() > 0.9f && s.map.label(i) > 0) ++top[s.map.label(i)];
+  }
+  ASSERT_FALSE(top.empty());
+  EXPECT_GE(MajorityLabel(top).second, 0.97);
+}
+
+TEST(IncrementalSegmenterTest, BoxStandingOnABoxGivesTwoAdjacentComponents) {
+  AnalyticWorld world;
+  world.Add(Eigen::Vector3d(-0.4, -0.3, 0.0), Eigen::Vector3d(0.4, 0.3, 0.45), 1);
+  world.Add(Eigen::Vector3d(-0.2, -0.15, 0.45), Eigen::Vector3d(0.15, 0.15, 0.75), 2);
+  Scanned s;
+  Scan(world, Ring(Eigen::Vector3d(0, 0, 0.4), 1.5, 0.9, 8), 12, &s);
+  const auto per_instance = LabelsPerInstance(s.map);
+  const auto [bottom_label, bottom_share] = MajorityLabel(per_instance.at(1));
+  const auto [top_label, top_share] = MajorityLabel(per_instance.at(2));
+  EXPECT_NE(bottom_label, top_label);
+  EXPECT_GE(bottom_share, 0.9);
+  EXPECT_GE(top_share, 0.9);
+  const ComponentGraph& graph = s.segmenter.Components(&s.map);
+  ASSERT_NE(graph.Find(bottom_label), nullptr);
+  ASSERT_NE(graph.Find(top_label), nullptr);
+  EXPECT_TRUE(graph.Adjacent(bottom_label, top_label));
+  // The big components are exactly these two.
+  int big = 0;
+  for (const Component& c : graph.components()) big += c.area_m2 > 0.02 ? 1 : 0;
+  EXPECT_EQ(big, 2);
+  const PresegQuality q = EvaluatePresegmentation(s.map, {});
+  EXPECT_GE(q.preseg_purity, 0.97);
+  EXPECT_GE(q.rand_index_preseg, 0.9);
+}
+
+TEST(IncrementalSegmenterTest, ChairIsSplitIntoNearConvexParts) {
+  // Seat (1), back (2), four legs (3..6), floor (10).
+  AnalyticWorld world;
+  world.Add(Eigen::Vector3d(-2, -2, -0.05), Eigen::Vector3d(2, 2, 0.0), 10);
+  world.Add(Eigen::Vector3d(-0.22, -0.22, 0.42), Eigen::Vector3d(0.22, 0.22, 0.47), 1);
+  // Parts meet at concave folds or depth steps (no flush faces, which would join them).
+  world.Add(Eigen::Vector3d(-0.19, 0.14, 0.47), Eigen::Vector3d(0.19, 0.18, 0.9), 2);
+  const double l = 0.035;
+  int id = 3;
+  for (double x : {-0.16, 0.16 - l}) {
+    for (double y : {-0.16, 0.16 - l}) world.Add(Eigen::Vector3d(x, y, 0.0), Eigen::Vector3d(x + l, y + l, 0.42), id++);
+  }
+  Scanned s;
+  Scan(world, Ring(Eigen::Vector3d(0, 0, 0.4), 1.3, 0.7, 8), 13, &s);
+  const auto per_instance = LabelsPerInstance(s.map);
+  const std::int32_t seat = MajorityLabel(per_instance.at(1)).first;
+  const std::int32_t back = MajorityLabel(per_instance.at(2)).first;
+  const std::int32_t floor = MajorityLabel(per_instance.at(10)).first;
+  EXPECT_NE(seat, back);
+  EXPECT_NE(seat, floor);
+  EXPECT_NE(back, floor);
+  for (int leg = 3; leg <= 6; ++leg) {
+    const std::int32_t leg_label = MajorityLabel(per_instance.at(leg)).first;
+    EXPECT_NE(leg_label, seat) << "leg " << leg;
+    EXPECT_NE(leg_label, floor) << "leg " << leg;
+  }
+  // Parts are not smeared into each other.
+  EXPECT_GE(EvaluatePresegmentation(s.map, {10}).preseg_purity, 0.95);
+  const ComponentGraph& graph = s.segmenter.Components(&s.map);
+  EXPECT_TRUE(graph.Adjacent(seat, back));
+}
+
+TEST(IncrementalSegmenterTest, PartSeenInTwoPartialViewsEndsWithOneLabel) {
+  AnalyticWorld world;
+  world.Add(Eigen::Vector3d(-1.5, -0.3, 0.35), Eigen::Vector3d(1.5, 0.3, 0.4), 1);
+  Scanned s;
+  // Two close views see disjoint ends of the slab, giving two labels ...
+  Scan(world,
+       {LookAt(Eigen::Vector3d(-0.9, -0.05, 1.3), Eigen::Vector3d(-0.9, 0, 0.4)),
+        LookAt(Eigen::Vector3d(0.9, -0.05, 1.3), Eigen::Vector3d(0.9, 0, 0.4))},
+       14, &s);
+  std::map<std::int32_t, int> top;
+  for (std::size_t i = 0; i < s.map.size(); ++i) {
+    if (s.map.normal(i).z() > 0.9f && s.map.label(i) > 0) ++top[s.map.label(i)];
+  }
+  EXPECT_EQ(top.size(), 2u);
+  // ... then views of the whole slab show they are one surface.
+  const geometry::Pose3 whole = LookAt(Eigen::Vector3d(0, -0.05, 2.6), Eigen::Vector3d(0, 0, 0.4));
+  Scan(world, {whole, whole}, 15, &s);
+  top.clear();
+  for (std::size_t i = 0; i < s.map.size(); ++i) {
+    if (s.map.normal(i).z() > 0.9f && s.map.label(i) > 0) ++top[s.map.label(i)];
+  }
+  EXPECT_GE(MajorityLabel(top).second, 0.99);
+}
+
+TEST(IncrementalSegmenterTest, ComponentsTrackChangesIncrementally) {
+  AnalyticWorld world;
+  world.Add(Eigen::Vector3d(-0.3, -0.3, 0.0), Eigen::Vector3d(0.3, 0.3, 0.4), 1);
+  world.Add(Eigen::Vector3d(1.0, -0.3, 0.0), Eigen::Vector3d(1.6, 0.3, 0.4), 2);
+  Scanned s;
+  Scan(world, {LookAt(Eigen::Vector3d(0.65, -1.8, 1.2), Eigen::Vector3d(0.65, 0, 0.2))}, 16, &s);
+  const ComponentGraph& g1 = s.segmenter.Components(&s.map);
+  ASSERT_GE(g1.size(), 2u);
+  EXPECT_FALSE(s.segmenter.changed_labels().empty());
+  // Separate boxes are not adjacent.
+  const auto per_instance = LabelsPerInstance(s.map);
+  const std::int32_t a = MajorityLabel(per_instance.at(1)).first, b = MajorityLabel(per_instance.at(2)).first;
+  EXPECT_FALSE(g1.Adjacent(a, b));
+  const Component* ca = g1.Find(a);
+  ASSERT_NE(ca, nullptr);
+  EXPECT_EQ(ca->points.size(), ca->normals.size());
+  EXPECT_NEAR(ca->area_m2, ca->points.size() * 1e-4, 1e-9);
+  EXPECT_TRUE(ca->bounds.Contains(Eigen::Vector3d(0, -0.3, 0.2), 0.02));
+  // Nothing changed: nothing is recomputed.
+  const std::uint64_t revision = ca->revision;
+  s.segmenter.Components(&s.map);
+  EXPECT_TRUE(s.segmenter.changed_labels().empty());
+  EXPECT_EQ(s.segmenter.Components(&s.map).Find(a)->revision, revision);
+  // Removing an object drops its component.
+  s.map.Remove({a});
+  const ComponentGraph& g2 = s.segmenter.Components(&s.map);
+  EXPECT_EQ(g2.Find(a), nullptr);
+  EXPECT_NE(g2.Find(b), nullptr);
+}
+
+}  // namespace
+}  // namespace objscan::segmentation
