@@ -1,10 +1,23 @@
 // `objscan run`: scan a scene autonomously and write the DESIGN.md output folder.
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "cli_util.h"
 #include "commands.h"
+#include "objscan/common/error.h"
+#include "objscan/eval/run_evaluation.h"
+#include "objscan/eval/run_output.h"
+#include "objscan/io/scene_spec.h"
+#include "objscan/recognition/database_builder.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/scanning/scanner.h"
 #include "objscan/scanning/system_config.h"
 
 namespace objscan::app {
@@ -17,17 +30,84 @@ struct RunArgs {
   std::uint64_t seed = 1;
   std::string config_file;
   std::vector<std::string> sets;
+  std::string model_path;
   bool print_config = false;
+  bool quiet = false;
 };
 
+constexpr int kDefaultDatabaseVariants = 8;
+
+std::string CacheDir() {
+  if (const char* d = std::getenv("OBJSCAN_CACHE_DIR")) return d;
+  if (const char* d = std::getenv("XDG_CACHE_HOME")) return std::string(d) + "/objscan";
+  if (const char* h = std::getenv("HOME")) return std::string(h) + "/.cache/objscan";
+  return ".objscan-cache";
+}
+
+}  // namespace
+
+// The built-in procedural database: built on first use and cached (shared with `objscan bench`).
+std::string DefaultDatabasePath(bool verbose) {
+  namespace fs = std::filesystem;
+  const std::string path = CacheDir() + "/procedural-v" + std::to_string(recognition::ModelDatabase::kFormatVersion) +
+                           "-n" + std::to_string(kDefaultDatabaseVariants) + ".db";
+  if (fs::exists(path)) return path;
+  std::error_code ec;
+  fs::create_directories(CacheDir(), ec);
+  if (ec) throw InputError(CacheDir() + ": cannot create the database cache folder: " + ec.message());
+  if (verbose) {
+    std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n", path.c_str());
+  }
+  const recognition::ModelDatabase db = recognition::BuildDatabase(
+      recognition::ProceduralModelSources(kDefaultDatabaseVariants), recognition::DatabaseBuildOptions{},
+      TerminalProgress("database"));
+  FinishProgress();
+  db.Save(path);
+  return path;
+}
+
+namespace {
+
 int RunScan(const RunArgs& args) {
-  const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, args.sets);
+  std::vector<std::string> sets = args.sets;
+  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
+  const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
   if (args.print_config) {
     std::fputs(scanning::ToYaml(config).c_str(), stdout);
     return 0;
   }
-  std::fprintf(stderr, "objscan run: the scanning loop is not available in this build yet (issue #7)\n");
-  return 3;
+  // Check every input before writing anything.
+  const world::Scene scene = io::LoadScene(args.scene, config.scene);
+  const std::string db_path = args.db.empty() ? DefaultDatabasePath(!args.quiet) : args.db;
+  const recognition::ModelDatabase database = recognition::ModelDatabase::Load(db_path);
+  if (database.models().empty()) throw InputError(db_path + ": the model database is empty");
+  std::set<world::Category> known;
+  for (const auto& m : database.models()) known.insert(m.category);
+
+  scanning::Scanner scanner(config, scene, database, args.seed);
+  eval::RunEvaluator evaluator(scene, config, std::vector<world::Category>(known.begin(), known.end()));
+  scanner.set_frame_observer([&evaluator](const sim::DepthFrame& frame) { evaluator.ObserveFrame(frame); });
+  const scanning::RunRecord& record = scanner.Run(args.quiet ? nullptr : TerminalProgress("scanning"));
+  FinishProgress();
+  const eval::RunMetrics metrics = evaluator.Evaluate(scanner, record);
+
+  eval::RunOutputInputs outputs;
+  outputs.record = &record;
+  outputs.scanner = &scanner;
+  outputs.database = &database;
+  outputs.config = &config;
+  outputs.metrics = &metrics;
+  outputs.scene_spec = args.scene;
+  outputs.database_path = db_path;
+  eval::WriteRunOutputs(args.out, outputs);
+
+  std::printf(
+      "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "
+      "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f}\n",
+      args.out.c_str(), scanning::TerminationName(record.terminated), record.views, record.objects.size(),
+      metrics.recall, metrics.precision, metrics.coverage_rate, metrics.rand_index, record.travel_m,
+      record.timing_s.total);
+  return 0;
 }
 
 }  // namespace
@@ -37,12 +117,14 @@ void AddRunCommand(CLI::App& root, RunFn* run) {
   auto* cmd = root.add_subcommand("run", "Scan a scene autonomously (NBO + NBV) and write a labelled reconstruction");
   cmd->add_option("--scene", args->scene, "scene SPEC: .world, .yaml/.json scene file, mesh, or procedural:CATEGORY:SEED")
       ->capture_default_str();
-  cmd->add_option("--db", args->db, "model database file (default: built-in procedural database, cached)");
+  cmd->add_option("--db", args->db, "model database file (default: built-in procedural database, built once and cached)");
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--seed", args->seed, "random seed (sensor noise and every random choice)")->capture_default_str();
   cmd->add_option("--config", args->config_file, "YAML config file (see config/default.yaml)");
   cmd->add_option("--set", args->sets, "override a config key: section.key=value (repeatable)");
+  cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
   cmd->add_flag("--print-config", args->print_config, "print the effective configuration as YAML and exit");
+  cmd->add_flag("--quiet", args->quiet, "no progress output on stderr");
   cmd->callback([run, args] { *run = [args] { return RunScan(*args); }; });
 }
 

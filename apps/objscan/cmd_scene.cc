@@ -1,4 +1,5 @@
 // `objscan scene`: load a scene, print its objects, draw a top view or export its mesh.
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -21,10 +22,14 @@ struct SceneArgs {
   std::string model_path;
 };
 
-nlohmann::json Vec(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+using Json = nlohmann::ordered_json;
 
-nlohmann::json SceneInfo(const world::Scene& scene) {
-  nlohmann::json objects = nlohmann::json::array();
+// Micrometre resolution keeps the JSON readable.
+double Round6(double v) { return std::round(v * 1e6) / 1e6; }
+Json Vec(const Eigen::Vector3d& v) { return Json::array({Round6(v.x()), Round6(v.y()), Round6(v.z())}); }
+
+Json SceneInfo(const world::Scene& scene) {
+  Json objects = Json::array();
   for (const auto& o : scene.objects()) {
     const geometry::Aabb3 box = scene.ObjectBounds(o);
     objects.push_back({{"id", o.instance_id},
@@ -37,7 +42,7 @@ nlohmann::json SceneInfo(const world::Scene& scene) {
   }
   const geometry::Aabb3 bounds = scene.Bounds();
   const geometry::Aabb3 furniture = scene.FurnitureBounds();
-  nlohmann::json info;
+  Json info;
   info["scene"] = scene.name();
   info["objects"] = objects;
   info["bounds"] = {{"min", Vec(bounds.min_m)}, {"max", Vec(bounds.max_m)}};

@@ -307,6 +307,21 @@ PlyData ReadPly(const std::string& path) {
   if (!have_end) throw bad("no end_header");
   if (!have_format) throw bad("no format line");
 
+  // A header announcing more data than the file can hold is truncated (and must not make us
+  // allocate for it): every scalar takes at least its size in binary, two characters in ASCII.
+  {
+    double min_bytes = 0;
+    for (const Element& e : elements) {
+      double per_row = 0;
+      for (const Property& p : e.properties) {
+        per_row += format == Format::kAscii ? 2.0 : static_cast<double>(TypeSize(p.is_list ? p.count_type : p.type));
+      }
+      min_bytes += per_row * static_cast<double>(e.count);
+    }
+    if (min_bytes > static_cast<double>(file.size() - std::min(pos, file.size())) + 1.0) {
+      throw bad("file is truncated (the header announces more data than the file holds)");
+    }
+  }
   PlyData data;
   BodyReader body(path, file, pos, format);
   bool have_vertices = false;

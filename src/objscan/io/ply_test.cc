@@ -121,6 +121,10 @@ TEST(PlyTest, CorruptFilesNameThePath) {
                      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n3 0 0 7\n");
   ExpectInputError([&] { ReadPly(dir.File("index.ply")); }, "index.ply");
+  testing::WriteText(dir.File("huge.ply"),
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+                     "property float y\nproperty float z\nend_header\n");
+  ExpectInputError([&] { ReadPly(dir.File("huge.ply")); }, "huge.ply");
   // Binary file cut short.
   WritePly(dir.File("full.ply"), MakeSample());
   std::filesystem::copy_file(dir.File("full.ply"), dir.File("cut.ply"));

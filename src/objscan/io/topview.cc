@@ -202,8 +202,10 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
     legend_w += swatch + 3 * pad;
     legend_h = static_cast<int>(entries.size()) * row_h + 2 * pad;
   }
+  // Footer under the map for the scale bar and the axis arrows, so they never hide the scene.
+  const int footer_h = std::max(options.scale_bar ? Canvas::TextHeight("1 m", ts) + 10 * ts : 0, 16 * ts) + pad;
   const int width = map_small.width() + legend_w;
-  const int height = std::max(title_h + map_small.height(), title_h + legend_h);
+  const int height = std::max(title_h + map_small.height() + footer_h, title_h + legend_h);
   TopView view;
   view.canvas = Canvas(width, height, kBackground);
   view.canvas.Blit(map_small, 0, title_h);
@@ -226,31 +228,27 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
       y += row_h;
     }
   }
-  const int map_bottom = title_h + map_small.height();
+  const int footer_top = title_h + map_small.height();
   if (options.scale_bar) {
-    // 1 m bar in the bottom-left corner on a white label.
-    const double bar_px = 1.0 / options.metres_per_pixel;
-    const int x0 = pad, y0 = map_bottom - pad - 4 * ts;
+    // A 1 m bar with end ticks and its label above it.
+    const int bar_px = static_cast<int>(std::lround(1.0 / options.metres_per_pixel));
     const std::string label = "1 m";
-    view.canvas.FillRect(x0 - ts * 2, y0 - Canvas::TextHeight(label, ts) - 4 * ts, x0 + static_cast<int>(bar_px) + 2 * ts,
-                         y0 + 4 * ts, kBackground);
-    view.canvas.FillRect(x0, y0, x0 + static_cast<int>(std::lround(bar_px)), y0 + 2 * ts, kInk);
-    view.canvas.FillRect(x0, y0 - 2 * ts, x0 + ts, y0 + 2 * ts, kInk);
-    view.canvas.FillRect(x0 + static_cast<int>(std::lround(bar_px)) - ts, y0 - 2 * ts,
-                         x0 + static_cast<int>(std::lround(bar_px)), y0 + 2 * ts, kInk);
-    view.canvas.DrawText(x0 + static_cast<int>(bar_px / 2) - Canvas::TextWidth(label, ts) / 2,
-                         y0 - Canvas::TextHeight(label, ts) - 2 * ts, label, kInk, ts);
+    const int x0 = pad;
+    const int label_y = footer_top + 2 * ts;
+    const int y0 = label_y + Canvas::TextHeight(label, ts) + 3 * ts;
+    view.canvas.DrawText(x0 + bar_px / 2 - Canvas::TextWidth(label, ts) / 2, label_y, label, kInk, ts);
+    view.canvas.FillRect(x0, y0, x0 + bar_px, y0 + 2 * ts, kInk);
+    view.canvas.FillRect(x0, y0 - 2 * ts, x0 + ts, y0 + 3 * ts, kInk);
+    view.canvas.FillRect(x0 + bar_px - ts, y0 - 2 * ts, x0 + bar_px, y0 + 3 * ts, kInk);
   }
   {
-    // Axis arrows (+x right, +y up) in the bottom-right corner of the map.
-    const double len = 14.0 * ts;
-    const Eigen::Vector2d o(map_small.width() - pad - len - 6 * ts, map_bottom - pad - 6 * ts);
-    view.canvas.FillRect(static_cast<int>(o.x()) - 3 * ts, static_cast<int>(o.y() - len) - 10 * ts,
-                         static_cast<int>(o.x() + len) + 9 * ts, static_cast<int>(o.y()) + 3 * ts, kBackground);
+    // Axis arrows (+x right, +y up) at the right end of the footer.
+    const double len = 12.0 * ts;
+    const Eigen::Vector2d o(map_small.width() - pad - len - 8 * ts, footer_top + footer_h - pad - ts);
     view.canvas.DrawArrow(o, o + Eigen::Vector2d(len, 0), kInk, ts, 4.0 * ts);
     view.canvas.DrawArrow(o, o + Eigen::Vector2d(0, -len), kInk, ts, 4.0 * ts);
-    view.canvas.DrawText(static_cast<int>(o.x() + len) + 2 * ts, static_cast<int>(o.y()) - 3 * ts, "x", kInk, ts);
-    view.canvas.DrawText(static_cast<int>(o.x()) + 2 * ts, static_cast<int>(o.y() - len) - 8 * ts, "y", kInk, ts);
+    view.canvas.DrawText(static_cast<int>(o.x() + len) + 2 * ts, static_cast<int>(o.y()) - 4 * ts, "x", kInk, ts);
+    view.canvas.DrawText(static_cast<int>(o.x()) - 8 * ts, static_cast<int>(o.y() - len), "y", kInk, ts);
   }
   return view;
 }

@@ -11,6 +11,8 @@ void FrontierOptions::Validate() const {
   config::RequireInRange("min_floor_elements_per_cell", min_floor_elements_per_cell, 1, 1000000);
   config::RequireInRange("min_cluster_cells", min_cluster_cells, 1, 1000000);
   config::RequireNonNegative("wall_margin_m", wall_margin_m);
+  config::RequireInRange("obstacle_clearance_cells", obstacle_clearance_cells, 0, 100);
+  config::RequireNonNegative("obstacle_probe_height_m", obstacle_probe_height_m);
 }
 
 std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const OccupancyMap& occupancy,
@@ -35,10 +37,12 @@ std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const Oc
     y1 = std::max(y1, iy);
   }
   if (floor_cells.empty()) return goals;
-  x0 -= 1;
-  y0 -= 1;
-  x1 += 1;
-  y1 += 1;
+  // A one-cell rim for the unexplored neighbours, plus room for their obstacle neighbourhoods.
+  const int rim = 1 + options.obstacle_clearance_cells;
+  x0 -= rim;
+  y0 -= rim;
+  x1 += rim;
+  y1 += rim;
   const int w = x1 - x0 + 1, h = y1 - y0 + 1;
   auto idx = [&](int ix, int iy) { return static_cast<std::size_t>(iy - y0) * w + (ix - x0); };
   std::vector<int> count(static_cast<std::size_t>(w) * h, 0);
@@ -48,18 +52,42 @@ std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const Oc
     return ix >= x0 && ix <= x1 && iy >= y0 && iy <= y1 && count[idx(ix, iy)] >= options.min_floor_elements_per_cell;
   };
   const double probe_z = structure.floor_height_m + 1.5 * occupancy.resolution_m();
+  // Per cell, lazily: 0 = not yet probed, 1 = clear, 2 = an occupied voxel in the obstacle band.
+  std::vector<std::uint8_t> obstacle(count.size(), 0);
+  auto has_obstacle = [&](int ix, int iy) {
+    std::uint8_t& o = obstacle[idx(ix, iy)];
+    if (o == 0) {
+      o = 1;
+      const Eigen::Vector2d c = center(ix, iy);
+      const double top = structure.floor_height_m + options.obstacle_probe_height_m;
+      for (double z = probe_z; z <= top + 1e-9; z += occupancy.resolution_m()) {
+        if (occupancy.Query(Eigen::Vector3d(c.x(), c.y(), z)) == Occupancy::kOccupied) {
+          o = 2;
+          break;
+        }
+      }
+    }
+    return o == 2;
+  };
+  const int clearance = options.obstacle_clearance_cells;
   auto unexplored = [&](int ix, int iy) {
     if (observed(ix, iy)) return false;
     const Eigen::Vector2d c = center(ix, iy);
     // Cells beyond a wall plane are outside the room: nothing to explore there.
     if (!structure.InsideWalls(Eigen::Vector3d(c.x(), c.y(), probe_z), 0.0)) return false;
-    return occupancy.Query(Eigen::Vector3d(c.x(), c.y(), probe_z)) == Occupancy::kUnknown;
+    if (occupancy.Query(Eigen::Vector3d(c.x(), c.y(), probe_z)) != Occupancy::kUnknown) return false;
+    for (int dy = -clearance; dy <= clearance; ++dy) {
+      for (int dx = -clearance; dx <= clearance; ++dx) {
+        if (has_obstacle(ix + dx, iy + dy)) return false;
+      }
+    }
+    return true;
   };
 
   std::vector<std::uint8_t> frontier(count.size(), 0);
   static const int kN4[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-  for (int iy = y0; iy <= y1; ++iy) {
-    for (int ix = x0; ix <= x1; ++ix) {
+  for (int iy = y0 + clearance; iy <= y1 - clearance; ++iy) {
+    for (int ix = x0 + clearance; ix <= x1 - clearance; ++ix) {
       if (!observed(ix, iy)) continue;
       const Eigen::Vector2d c = center(ix, iy);
       if (!structure.InsideWalls(Eigen::Vector3d(c.x(), c.y(), probe_z), options.wall_margin_m)) continue;

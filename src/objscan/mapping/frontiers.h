@@ -17,6 +17,12 @@ struct FrontierOptions {
   int min_cluster_cells = 4;            // smaller clusters are noise, not goals
   // Cells behind a detected wall (by more than this) are outside the room and never frontiers.
   double wall_margin_m = 0.1;
+  // An unknown cell within this many cells of an obstacle (an occupied voxel between the probe
+  // height just above the floor and obstacle_probe_height_m above it, about the robot's height)
+  // is the hidden underside or back of that obstacle (a wardrobe, the knee space of a desk, a gap
+  // between a bed and a night stand), not open floor the robot could drive to.
+  int obstacle_clearance_cells = 1;
+  double obstacle_probe_height_m = 1.5;
 
   template <class V>
   void Visit(V& v) {
@@ -24,6 +30,8 @@ struct FrontierOptions {
     v("min_floor_elements_per_cell", min_floor_elements_per_cell);
     v("min_cluster_cells", min_cluster_cells);
     v("wall_margin_m", wall_margin_m);
+    v("obstacle_clearance_cells", obstacle_clearance_cells);
+    v("obstacle_probe_height_m", obstacle_probe_height_m);
   }
   void Validate() const;
 };
@@ -35,9 +43,10 @@ struct FrontierGoal {
 };
 
 // A floor cell is observed when it holds enough floor-tagged elements; a neighbour (4-connected) is
-// unexplored when it is not observed floor, its centre is not beyond a detected wall, and the
+// unexplored when it is not observed floor, its centre is not beyond a detected wall, the
 // occupancy just above the floor there is unknown (occupied means an obstacle such as a wall or
-// furniture; free means rays passed over it).
+// furniture; free means rays passed over it) and no obstacle stands within
+// obstacle_clearance_cells of it.
 // Frontier cells are clustered 8-connected; goals are sorted by size, largest first.
 std::vector<FrontierGoal> FindFloorFrontiers(const SurfaceMap& surface, const OccupancyMap& occupancy,
                                              const StructureResult& structure, const FrontierOptions& options);

@@ -134,19 +134,27 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     return x.votes != y.votes ? x.votes > y.votes : (x.a != y.a ? x.a < y.a : x.o < y.o);
   });
   const double cos_tag = std::cos(kTagMaxAngleDeg * M_PI / 180.0);
-  int evaluated = 0;
+  // Every evaluated peak (accepted or not) suppresses its neighbourhood, so a rejected plane is
+  // not evaluated again through its neighbouring bins.
+  std::vector<std::pair<double, double>> evaluated_peaks;  // (azimuth, offset)
   for (const Candidate& c : candidates) {
     if (c.votes * voxel_area < options_.wall_min_area_m2) break;
-    if (static_cast<int>(result.walls.size()) >= options_.wall_max_count || evaluated > 4 * options_.wall_max_count) break;
+    if (static_cast<int>(result.walls.size()) >= options_.wall_max_count ||
+        static_cast<int>(evaluated_peaks.size()) > 4 * options_.wall_max_count) {
+      break;
+    }
     const double th_c = (c.a + 0.5) * abin - M_PI;
     const double d_c = (c.o + 0.5) * obin;
     bool suppressed = false;
+    for (const auto& [th_p, d_p] : evaluated_peaks) {
+      if (AngleDiff(th_p, th_c) < 3 * abin && std::fabs(d_p - d_c) < 3 * obin) suppressed = true;
+    }
     for (const WallPlane& w : result.walls) {
       const double th_w = std::atan2(w.normal.y(), w.normal.x());
       if (AngleDiff(th_w, th_c) < 3 * abin && std::fabs(w.offset_m - d_c) < 3 * obin) suppressed = true;
     }
     if (suppressed) continue;
-    ++evaluated;
+    evaluated_peaks.emplace_back(th_c, d_c);
     // Refine: mean normal and offset of the elements near the peak.
     Eigen::Vector2d nsum = Eigen::Vector2d::Zero();
     for (std::size_t k = 0; k < vertical.size(); ++k) {
@@ -169,15 +177,13 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     }
     if (dcount == 0) continue;
     wall.offset_m = dsum / dcount;
-    // Inliers, extent, and how much lies behind the plane.
-    std::size_t inliers = 0, behind = 0;
+    // Inliers and extent.
+    std::size_t inliers = 0;
     wall.z_min_m = wall.span_min_m = std::numeric_limits<double>::infinity();
     wall.z_max_m = wall.span_max_m = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Vector3d p = map->position(i).cast<double>();
-      const double sd = wall.SignedDistance(p);
-      if (sd < -2.0 * tol) ++behind;
-      if (std::fabs(sd) < tol && normals[i].cast<double>().dot(wall.normal) > cos_tag) {
+      if (std::fabs(wall.SignedDistance(p)) < tol && normals[i].cast<double>().dot(wall.normal) > cos_tag) {
         ++inliers;
         wall.z_min_m = std::min(wall.z_min_m, p.z());
         wall.z_max_m = std::max(wall.z_max_m, p.z());
@@ -189,9 +195,32 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     wall.area_m2 = inliers * voxel_area;
     if (wall.area_m2 < options_.wall_min_area_m2) continue;
     if (wall.z_max_m - wall.z_min_m < options_.wall_min_height_m) continue;
+    // A wall bounds the room: almost nothing lies behind it within its extent along the wall
+    // (beyond its ends there may be more room, e.g. the other arm of an L-shaped room).
+    std::size_t behind = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d p = map->position(i).cast<double>();
+      if (wall.SignedDistance(p) >= -2.0 * tol) continue;
+      const double s = -wall.normal.y() * p.x() + wall.normal.x() * p.y();
+      if (s > wall.span_min_m + tol && s < wall.span_max_m - tol) ++behind;
+    }
     if (static_cast<double>(behind) > options_.wall_max_behind_fraction * static_cast<double>(n)) continue;
     result.walls.push_back(wall);
   }
+
+  // A vertical plane with a parallel wall behind it that overlaps it along the wall is the face of
+  // furniture standing against that wall (a wardrobe), not a wall.
+  std::vector<WallPlane> walls;
+  for (const WallPlane& w : result.walls) {
+    bool in_front = false;
+    for (const WallPlane& v : result.walls) {
+      if (&v == &w || w.normal.dot(v.normal) < std::cos(2 * abin) || v.offset_m > w.offset_m - 2.0 * tol) continue;
+      const double overlap = std::min(w.span_max_m, v.span_max_m) - std::max(w.span_min_m, v.span_min_m);
+      if (overlap > 0.5 * (w.span_max_m - w.span_min_m)) in_front = true;
+    }
+    if (!in_front) walls.push_back(w);
+  }
+  result.walls.swap(walls);
 
   // Rewrite the tags.
   for (std::size_t i = 0; i < n; ++i) {

@@ -154,5 +154,57 @@ TEST(StructureAndFrontierTest, FloorWallsFoundAndFrontiersVanishWhenTheFloorIsSe
                             << " cells at " << last.front().centroid_m.transpose();
 }
 
+// An L-shaped room (a solid block fills the +X+Y corner) with a tall wardrobe against the -Y wall:
+// the two inner walls of the L are walls although the other arm of the room lies behind their
+// planes, and the wardrobe's big front face is not a wall.
+TEST(StructureTest, LShapedRoomHasInnerWallsAndAWardrobeIsNoWall) {
+  AnalyticWorld room;
+  room.Add(Eigen::Vector3d(-2.1, -1.6, -0.05), Eigen::Vector3d(2.1, 1.6, 0.0), kFloor);
+  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);   // x = -2
+  room.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // x = 2
+  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);   // y = -1.5
+  room.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // y = 1.5
+  room.Add(Eigen::Vector3d(1.0, 0.5, 0.0), Eigen::Vector3d(2.0, 1.5, 2.4), kWall);      // the notch
+  room.Add(Eigen::Vector3d(-1.0, -1.5, 0.0), Eigen::Vector3d(0.6, -1.0, 2.0), kBox);    // wardrobe
+  Rng rng(5);
+  RoomScan scan;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-1.0, 0.2, 1.2), Eigen::Vector3d(1.3, -0.6, 1.2),
+                                   Eigen::Vector3d(0.0, 0.9, 1.2)}) {
+    for (int yaw = 0; yaw < 360; yaw += 45) Observe(room, View(p, yaw, -30), &rng, &scan);
+  }
+  scan.structure = StructureDetector().Update(&scan.surface);
+  // Expected inner faces as (normal, offset): n . x = offset with n pointing into the room.
+  struct Face {
+    Eigen::Vector3d normal;
+    double offset_m;
+  };
+  const std::vector<Face> faces = {{Eigen::Vector3d(1, 0, 0), -2.0},  {Eigen::Vector3d(-1, 0, 0), -2.0},
+                                   {Eigen::Vector3d(0, 1, 0), -1.5},  {Eigen::Vector3d(0, -1, 0), -1.5},
+                                   {Eigen::Vector3d(-1, 0, 0), -1.0}, {Eigen::Vector3d(0, -1, 0), -0.5}};
+  std::vector<int> found(faces.size(), 0);
+  for (const WallPlane& w : scan.structure.walls) {
+    bool matched = false;
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      if (w.normal.dot(faces[k].normal) > 0.999 && std::fabs(w.offset_m - faces[k].offset_m) < 0.02) {
+        ++found[k];
+        matched = true;
+      }
+    }
+    EXPECT_TRUE(matched) << "unexpected wall n=" << w.normal.transpose() << " d=" << w.offset_m;
+  }
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    EXPECT_EQ(found[k], 1) << "face n=" << faces[k].normal.transpose() << " d=" << faces[k].offset_m;
+  }
+  // The wardrobe stays an object.
+  std::size_t box_n = 0, box_structural = 0;
+  for (std::size_t i = 0; i < scan.surface.size(); ++i) {
+    if (scan.surface.gt_instance(i) != kBox) continue;
+    ++box_n;
+    box_structural += scan.surface.structure(i) != Structure::kNone ? 1 : 0;
+  }
+  ASSERT_GT(box_n, 5000u);
+  EXPECT_LT(static_cast<double>(box_structural) / box_n, 0.03);
+}
+
 }  // namespace
 }  // namespace objscan::mapping

@@ -1,6 +1,7 @@
 #include "objscan/mapping/surface_map.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 namespace objscan::mapping {
@@ -21,40 +22,91 @@ void SurfaceMapOptions::Validate() const {
 SurfaceMap::SurfaceMap(const SurfaceMapOptions& options)
     : options_(options), inv_voxel_size_(static_cast<float>(1.0 / options.voxel_size_m)) {
   options_.Validate();
-  RebuildIndex(1 << 16);
+  RebuildIndex();
 }
 
-void SurfaceMap::RebuildIndex(std::size_t capacity) {
-  std::size_t cap = 1;
-  while (cap < capacity) cap <<= 1;
-  slots_.assign(cap, Slot());
-  slot_mask_ = cap - 1;
-  const VoxelKeyHash hash;
+namespace {
+// Arithmetic shifts floor negative coordinates, so blocks tile space without a seam at zero.
+constexpr int kShift = 3;
+constexpr std::int32_t kMask = (1 << kShift) - 1;
+constexpr std::size_t kBlockVoxels = std::size_t{1} << (3 * kShift);
+inline VoxelKey BlockOf(const VoxelKey& k) { return VoxelKey{k.x >> kShift, k.y >> kShift, k.z >> kShift}; }
+// floor() without the library call (x is far inside the int range for any map).
+inline std::int32_t FloorToInt(float x) {
+  const std::int32_t i = static_cast<std::int32_t>(x);
+  return i - (x < static_cast<float>(i) ? 1 : 0);
+}
+inline VoxelKey KeyOfPoint(const Eigen::Vector3f& p, float inv_voxel_size) {
+  return VoxelKey{FloorToInt(p.x() * inv_voxel_size), FloorToInt(p.y() * inv_voxel_size),
+                  FloorToInt(p.z() * inv_voxel_size)};
+}
+inline int LocalIndex(const VoxelKey& k) {
+  return ((k.z & kMask) << (2 * kShift)) | ((k.y & kMask) << kShift) | (k.x & kMask);
+}
+}  // namespace
+
+void SurfaceMap::RebuildIndex() {
+  slots_.assign(1 << 12, Slot());
+  slot_mask_ = slots_.size() - 1;
+  num_blocks_ = 0;
+  block_elements_.clear();
   for (std::size_t i = 0; i < keys_.size(); ++i) {
-    std::size_t s = hash(keys_[i]) & slot_mask_;
-    while (slots_[s].index >= 0) s = (s + 1) & slot_mask_;
-    slots_[s].key = keys_[i];
-    slots_[s].index = static_cast<std::int32_t>(i);
+    const std::int32_t offset = FindOrAddBlock(BlockOf(keys_[i]));
+    block_elements_[offset + LocalIndex(keys_[i])] = static_cast<std::int32_t>(i);
   }
 }
 
-std::int32_t SurfaceMap::Find(const VoxelKey& key) const {
-  std::size_t s = VoxelKeyHash()(key) & slot_mask_;
+std::int32_t SurfaceMap::FindBlock(const VoxelKey& block_key) const {
+  std::size_t s = VoxelKeyHash()(block_key) & slot_mask_;
   while (true) {
     const Slot& slot = slots_[s];
-    if (slot.index < 0) return -1;
-    if (slot.key == key) return slot.index;
+    if (slot.offset < 0) return -1;
+    if (slot.key == block_key) return slot.offset;
     s = (s + 1) & slot_mask_;
   }
 }
 
+void SurfaceMap::GrowBlockTable() {
+  std::vector<Slot> old;
+  old.swap(slots_);
+  slots_.assign(2 * old.size(), Slot());
+  slot_mask_ = slots_.size() - 1;
+  const VoxelKeyHash hash;
+  for (const Slot& o : old) {
+    if (o.offset < 0) continue;
+    std::size_t s = hash(o.key) & slot_mask_;
+    while (slots_[s].offset >= 0) s = (s + 1) & slot_mask_;
+    slots_[s] = o;
+  }
+}
+
+std::int32_t SurfaceMap::FindOrAddBlock(const VoxelKey& block_key) {
+  std::size_t s = VoxelKeyHash()(block_key) & slot_mask_;
+  while (slots_[s].offset >= 0) {
+    if (slots_[s].key == block_key) return slots_[s].offset;
+    s = (s + 1) & slot_mask_;
+  }
+  if (2 * (num_blocks_ + 1) > slots_.size()) {
+    GrowBlockTable();
+    s = VoxelKeyHash()(block_key) & slot_mask_;
+    while (slots_[s].offset >= 0) s = (s + 1) & slot_mask_;
+  }
+  const std::int32_t offset = static_cast<std::int32_t>(block_elements_.size());
+  block_elements_.resize(block_elements_.size() + kBlockVoxels, -1);
+  slots_[s].key = block_key;
+  slots_[s].offset = offset;
+  ++num_blocks_;
+  return offset;
+}
+
+std::int32_t SurfaceMap::Find(const VoxelKey& key) const {
+  const std::int32_t offset = FindBlock(BlockOf(key));
+  return offset < 0 ? -1 : block_elements_[offset + LocalIndex(key)];
+}
+
 std::int32_t SurfaceMap::Insert(const VoxelKey& key) {
-  if (2 * (keys_.size() + 1) > slots_.size()) RebuildIndex(2 * slots_.size());
   const std::int32_t index = static_cast<std::int32_t>(keys_.size());
-  std::size_t s = VoxelKeyHash()(key) & slot_mask_;
-  while (slots_[s].index >= 0) s = (s + 1) & slot_mask_;
-  slots_[s].key = key;
-  slots_[s].index = index;
+  block_elements_[FindOrAddBlock(BlockOf(key)) + LocalIndex(key)] = index;
   keys_.push_back(key);
   position_.emplace_back(Eigen::Vector3f::Zero());
   normal_sum_.emplace_back(Eigen::Vector3f::Zero());
@@ -128,6 +180,23 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
     return d > 0.f && d * d >= cos_assoc_sq * ns.squaredNorm();
   };
 
+  // Neighbouring pixels and the column search mostly stay in one block: remember the last one.
+  std::int32_t cached_bx = INT32_MIN, cached_by = 0, cached_bz = 0;
+  std::int32_t cached_offset = -1;
+  auto find = [&](const VoxelKey& key) {
+    const std::int32_t bx = key.x >> kShift, by = key.y >> kShift, bz = key.z >> kShift;
+    if (bx != cached_bx || by != cached_by || bz != cached_bz) {
+      cached_bx = bx;
+      cached_by = by;
+      cached_bz = bz;
+      cached_offset = FindBlock(VoxelKey{bx, by, bz});
+    }
+    return cached_offset < 0 ? -1 : block_elements_[cached_offset + LocalIndex(key)];
+  };
+
+  ray_x_.resize(w);
+  for (int u = 0; u < w; ++u) ray_x_[u] = static_cast<float>((u - in.cx_px) / in.fx_px);
+
   std::size_t fused = 0, created = 0;
   for (int v = 0; v < h; v += stride) {
     const float ray_y = static_cast<float>((v - in.cy_px) / in.fy_px);
@@ -135,7 +204,7 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
       const std::size_t i = static_cast<std::size_t>(v) * w + u;
       if (!vnm.valid[i]) continue;
       const float z = frame.depth_m[i];
-      const Eigen::Vector3f p_camera(static_cast<float>((u - in.cx_px) / in.fx_px) * z, ray_y * z, z);
+      const Eigen::Vector3f p_camera(ray_x_[u] * z, ray_y * z, z);
       const Eigen::Vector3f& n_camera = vnm.normal_camera[i];
       const float cos_incidence = -n_camera.dot(p_camera) / p_camera.norm();
       if (cos_incidence < cos_incidence_min) continue;
@@ -144,8 +213,8 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
       const Eigen::Vector3f p = R * p_camera + t;
       const Eigen::Vector3f n = R * n_camera;
 
-      const VoxelKey key = geometry::KeyOf(p, inv_voxel_size_);
-      std::int32_t idx = Find(key);
+      const VoxelKey key = KeyOfPoint(p, inv_voxel_size_);
+      std::int32_t idx = find(key);
       bool own_voxel_taken = idx >= 0;
       if (idx >= 0 && !agrees(idx, n)) idx = -1;
       if (idx < 0) {
@@ -158,11 +227,12 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
         int axis;
         n.cwiseAbs().maxCoeff(&axis);
         float best_dist = assoc_m;
-        for (int s = 1; s <= steps; ++s) {
-          for (int sign = -1; sign <= 1; sign += 2) {
+        // One side of the column, then the other: consecutive probes stay in one cached block.
+        for (int sign = -1; sign <= 1; sign += 2) {
+          for (int s = 1; s <= steps; ++s) {
             VoxelKey k = key;
             (axis == 0 ? k.x : axis == 1 ? k.y : k.z) += sign * s;
-            const std::int32_t j = Find(k);
+            const std::int32_t j = find(k);
             if (j >= 0 && agrees(j, n)) {
               const float dist = std::fabs((position_[j] - p).dot(n));
               if (dist <= best_dist) {
@@ -177,16 +247,17 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
         VoxelKey k = key;
         if (own_voxel_taken) {
           // Another surface (e.g. the back of a thin board) owns this voxel: use the one in front.
-          k = geometry::KeyOf(p + (0.75f * voxel) * n, inv_voxel_size_);
-          if (Find(k) >= 0) continue;
+          k = KeyOfPoint(p + (0.75f * voxel) * n, inv_voxel_size_);
+          if (find(k) >= 0) continue;
         }
         idx = Insert(k);
+        cached_bx = INT32_MIN;  // Insert may have added a block or moved block_elements_
         ++created;
       }
       // Running weighted mean.
       const float w_old = weight_[idx];
       const float w_new = w_old + weight;
-      position_[idx] = (position_[idx] * w_old + p * weight) / w_new;
+      position_[idx] += (p - position_[idx]) * (weight / w_new);
       normal_sum_[idx] += weight * n;
       weight_[idx] = w_new;
       MarkDirty(label_[idx]);
@@ -346,7 +417,7 @@ std::size_t SurfaceMap::Remove(const std::vector<std::int32_t>& labels) {
   structure_.resize(out);
   gt_id_.resize(2 * out);
   gt_count_.resize(2 * out);
-  RebuildIndex(slots_.size());
+  RebuildIndex();
   for (std::int32_t l : labels) MarkDirty(l);
   return removed;
 }

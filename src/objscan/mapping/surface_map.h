@@ -1,6 +1,8 @@
 #pragma once
 // The current scene surface T (paper §4.1): posed depth frames fused into voxel-hashed surface
 // elements (one surfel per voxel, voxblox-style flat arrays plus an open-addressing hash index).
+// The index is two-level: an open-addressing hash of 8x8x8-voxel blocks, each a dense array of
+// element indices, so the neighbouring voxels association probes mostly share one cached block.
 // Each element keeps a running weighted mean position and normal, a confidence (fusion weight), a
 // pre-segment label with its voting confidence, a structural tag (floor / wall) and, for evaluation
 // only, the majority ground-truth instance of the pixels that saw it.
@@ -113,7 +115,12 @@ class SurfaceMap {
 
  private:
   std::int32_t Insert(const geometry::VoxelKey& key);  // new element, returns its index
-  void RebuildIndex(std::size_t capacity);
+  // Drops and rebuilds the block index from keys_.
+  void RebuildIndex();
+  // Block index: the first entry of the block holding `key` in block_elements_, or -1.
+  std::int32_t FindBlock(const geometry::VoxelKey& block_key) const;
+  std::int32_t FindOrAddBlock(const geometry::VoxelKey& block_key);
+  void GrowBlockTable();
   void MarkDirty(std::int32_t label) {
     if (label <= 0) return;
     if (static_cast<std::size_t>(label) >= dirty_flag_.size()) dirty_flag_.resize(2 * label + 16, 0);
@@ -139,17 +146,21 @@ class SurfaceMap {
   std::vector<std::int32_t> gt_id_;      // 2 per element
   std::vector<std::uint16_t> gt_count_;  // 2 per element
 
-  // Open-addressing hash index (linear probing), power-of-two capacity.
+  // Block hash (linear probing, power-of-two capacity, at most half full): block key -> offset of
+  // its 512 entries in block_elements_ (element index or -1 per voxel).
   struct Slot {
     geometry::VoxelKey key;
-    std::int32_t index = -1;
+    std::int32_t offset = -1;
   };
   std::vector<Slot> slots_;
   std::size_t slot_mask_ = 0;
+  std::size_t num_blocks_ = 0;
+  std::vector<std::int32_t> block_elements_;
 
   std::vector<std::uint8_t> dirty_flag_;  // by label
   std::vector<std::int32_t> dirty_labels_;
   VertexNormalMap scratch_vertex_normals_;
+  std::vector<float> ray_x_;  // per image column: (u - cx) / fx
 };
 
 }  // namespace objscan::mapping

@@ -6,33 +6,65 @@ namespace objscan::mapping {
 
 void NormalEstimationOptions::Validate() const {
   config::RequireInRange("smoothing_radius_px", smoothing_radius_px, 0, 15);
+  config::RequireNonNegative("smoothing_base_m", smoothing_base_m);
+  config::RequireNonNegative("smoothing_per_m", smoothing_per_m);
   config::RequireInRange("difference_step_px", difference_step_px, 1, 15);
   config::RequirePositive("depth_jump_per_m", depth_jump_per_m);
 }
 
 namespace {
 
-// One pass of the guarded box filter along a line of `n` samples spaced `stride` apart.
-void GuardedBoxPass(const float* in, float* out, int n, int stride, int radius, float jump_per_m) {
-  for (int i = 0; i < n; ++i) {
-    const float z = in[i * stride];
-    if (z <= 0.f) {
-      out[i * stride] = 0.f;
-      continue;
+// The guarded box filter along rows: out[i] is the mean of the valid samples within `radius`
+// columns of i whose depth is within tolerance of in[i] (0 where in[i] is invalid). Branch-free
+// inner loops so the compiler vectorises them.
+void GuardedBoxRows(const float* in, float* out, int w, int h, int radius, float tol_base, float tol_per_m) {
+  for (int v = 0; v < h; ++v) {
+    const float* row = in + static_cast<std::size_t>(v) * w;
+    float* out_row = out + static_cast<std::size_t>(v) * w;
+    for (int u = 0; u < w; ++u) {
+      const float z = row[u];
+      const float tol = tol_base + tol_per_m * z * z;
+      const int lo = u - radius < 0 ? 0 : u - radius;
+      const int hi = u + radius >= w ? w - 1 : u + radius;
+      float sum = 0.f, count = 0.f;
+      for (int j = lo; j <= hi; ++j) {
+        const float zj = row[j];
+        const bool take = zj > 0.f && std::fabs(zj - z) < tol;
+        sum += take ? zj : 0.f;
+        count += take ? 1.f : 0.f;
+      }
+      out_row[u] = z > 0.f ? sum / count : 0.f;
     }
-    const float tol = jump_per_m * z * z;
-    float sum = 0.f;
-    int count = 0;
-    const int lo = i - radius < 0 ? 0 : i - radius;
-    const int hi = i + radius >= n ? n - 1 : i + radius;
+  }
+}
+
+// The same along columns, processed a row at a time so every access is contiguous.
+void GuardedBoxColumns(const float* in, float* out, int w, int h, int radius, float tol_base, float tol_per_m,
+                       std::vector<float>* scratch) {
+  scratch->resize(3 * static_cast<std::size_t>(w));
+  float* sum = scratch->data();
+  float* count = sum + w;
+  float* tol = count + w;
+  for (int v = 0; v < h; ++v) {
+    const float* centre = in + static_cast<std::size_t>(v) * w;
+    for (int u = 0; u < w; ++u) {
+      sum[u] = 0.f;
+      count[u] = 0.f;
+      tol[u] = tol_base + tol_per_m * centre[u] * centre[u];
+    }
+    const int lo = v - radius < 0 ? 0 : v - radius;
+    const int hi = v + radius >= h ? h - 1 : v + radius;
     for (int j = lo; j <= hi; ++j) {
-      const float zj = in[j * stride];
-      if (zj > 0.f && std::fabs(zj - z) < tol) {
-        sum += zj;
-        ++count;
+      const float* row = in + static_cast<std::size_t>(j) * w;
+      for (int u = 0; u < w; ++u) {
+        const float zj = row[u];
+        const bool take = zj > 0.f && std::fabs(zj - centre[u]) < tol[u];
+        sum[u] += take ? zj : 0.f;
+        count[u] += take ? 1.f : 0.f;
       }
     }
-    out[i * stride] = sum / static_cast<float>(count);
+    float* out_row = out + static_cast<std::size_t>(v) * w;
+    for (int u = 0; u < w; ++u) out_row[u] = centre[u] > 0.f ? sum[u] / count[u] : 0.f;
   }
 }
 
@@ -49,18 +81,19 @@ void ComputeVertexNormalMap(const sim::DepthFrame& frame, const NormalEstimation
   out->normal_camera.resize(n);
   out->valid.assign(n, 0);
   const float jump = static_cast<float>(options.depth_jump_per_m);
+  const float smooth_base = static_cast<float>(options.smoothing_base_m);
+  const float smooth_per_m = static_cast<float>(options.smoothing_per_m);
 
   // Smoothed depth (horizontal then vertical pass).
-  std::vector<float> tmp(n), z_s(n);
+  std::vector<float>& tmp = out->scratch_depth_m;
+  std::vector<float>& z_s = out->smoothed_depth_m;
+  tmp.resize(n);
+  z_s.resize(n);
   const float* depth = frame.depth_m.data();
   if (options.smoothing_radius_px > 0) {
-    for (int v = 0; v < h; ++v) {
-      GuardedBoxPass(depth + static_cast<std::size_t>(v) * w, tmp.data() + static_cast<std::size_t>(v) * w, w, 1,
-                     options.smoothing_radius_px, jump);
-    }
-    for (int u = 0; u < w; ++u) {
-      GuardedBoxPass(tmp.data() + u, z_s.data() + u, h, w, options.smoothing_radius_px, jump);
-    }
+    GuardedBoxRows(depth, tmp.data(), w, h, options.smoothing_radius_px, smooth_base, smooth_per_m);
+    GuardedBoxColumns(tmp.data(), z_s.data(), w, h, options.smoothing_radius_px, smooth_base, smooth_per_m,
+                      &out->scratch_rows);
   } else {
     z_s.assign(depth, depth + n);
   }

@@ -15,6 +15,11 @@ struct NormalEstimationOptions {
   // same surface (|dz| below the depth-jump threshold); 0 disables smoothing. Kinect depth is
   // quantised in disparity, so unsmoothed 1-pixel normals are useless beyond ~1 m.
   int smoothing_radius_px = 3;
+  // The smoothing only averages neighbours within smoothing_base_m + smoothing_per_m * z^2 of the
+  // pixel's depth (~3 sigma of the noise incl. disparity quantisation), so steps of a few
+  // centimetres stay steps instead of becoming ramps the segmenter cannot see.
+  double smoothing_base_m = 0.006;
+  double smoothing_per_m = 0.005;
   // Normals come from central differences over +-this many pixels of the smoothed vertex map.
   int difference_step_px = 2;
   // Neighbours farther apart than k * z^2 (z in metres) are on different surfaces (same k as the
@@ -24,6 +29,8 @@ struct NormalEstimationOptions {
   template <class V>
   void Visit(V& v) {
     v("smoothing_radius_px", smoothing_radius_px);
+    v("smoothing_base_m", smoothing_base_m);
+    v("smoothing_per_m", smoothing_per_m);
     v("difference_step_px", difference_step_px);
     v("depth_jump_per_m", depth_jump_per_m);
   }
@@ -39,6 +46,10 @@ struct VertexNormalMap {
   std::vector<Eigen::Vector3f> vertex_camera;  // smoothed vertex (zero where depth is invalid)
   std::vector<Eigen::Vector3f> normal_camera;  // unit normal (zero where valid == 0)
   std::vector<std::uint8_t> valid;             // 1 = vertex and normal usable
+  std::vector<float> smoothed_depth_m;         // the guarded-box-filtered depth (0 = invalid)
+  // Scratch buffers reused between frames.
+  std::vector<float> scratch_depth_m;
+  std::vector<float> scratch_rows;
 
   std::size_t Index(int u, int v) const { return static_cast<std::size_t>(v) * width + u; }
 };

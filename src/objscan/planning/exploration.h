@@ -21,7 +21,7 @@ struct ExplorationOptions {
   double visited_radius_m = 0.5;  // frontiers this close to an earlier frontier goal are not chosen again
   // Initial look-around: this many yaw steps over 360 degrees at each pitch.
   int look_around_yaw_steps = 8;
-  std::vector<double> look_around_pitches_deg = {-20.0};
+  std::vector<double> look_around_pitches_deg = {-35.0, 0.0};
 
   template <class V>
   void Visit(V& v) {

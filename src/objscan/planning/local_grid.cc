@@ -14,14 +14,17 @@ LocalGrid LocalGrid::Covering(const geometry::Aabb3& box, double voxel_size_m, d
   for (;;) {
     const Eigen::Vector3d n = (extent / v).array().ceil().max(1.0);
     const double count = n.x() * n.y() * n.z();
-    if (count <= static_cast<double>(max_voxels) || max_voxels == 0) {
+    // Voxel coordinates are stored as 16-bit integers downstream.
+    const bool fits_axes = n.maxCoeff() <= 32767.0;
+    if (fits_axes && (count <= static_cast<double>(max_voxels) || max_voxels == 0)) {
       grid.nx = static_cast<int>(n.x());
       grid.ny = static_cast<int>(n.y());
       grid.nz = static_cast<int>(n.z());
       break;
     }
     // Coarsen by the cube root of the excess (plus a hair so rounding cannot loop).
-    v *= std::cbrt(count / static_cast<double>(max_voxels)) * 1.001;
+    const double over_budget = max_voxels > 0 ? std::cbrt(count / static_cast<double>(max_voxels)) : 1.0;
+    v *= std::max(over_budget, n.maxCoeff() / 32767.0) * 1.001;
   }
   grid.voxel_size_m = v;
   // Centre the block on the box so the padding is the same on both sides.
@@ -43,6 +46,17 @@ void RasterizeMask(const LocalGrid& grid, const std::vector<Eigen::Vector3f>& po
   int x, y, z;
   for (const Eigen::Vector3f& p : points_world) {
     if (grid.VoxelOf(p, &x, &y, &z)) (*mask)[grid.Index(x, y, z)] |= bits;
+  }
+}
+
+void RasterizeIndicatorAndMask(const LocalGrid& grid, const std::vector<Eigen::Vector3f>& points_world,
+                               std::vector<float>* field, std::uint16_t bits, std::vector<std::uint16_t>* mask) {
+  int x, y, z;
+  for (const Eigen::Vector3f& p : points_world) {
+    if (!grid.VoxelOf(p, &x, &y, &z)) continue;
+    const std::size_t i = grid.Index(x, y, z);
+    if (field != nullptr) (*field)[i] = 1.0f;
+    (*mask)[i] |= bits;
   }
 }
 

@@ -16,7 +16,8 @@ struct LocalGrid {
   int nx = 0, ny = 0, nz = 0;
 
   // The grid covering `box` grown by `padding_m` on every side. When that would exceed `max_voxels` the
-  // voxel size is enlarged (returned in voxel_size_m) so the grid stays within the budget.
+  // voxel size is enlarged (returned in voxel_size_m) so the grid stays within the budget (and within
+  // 32767 voxels per axis).
   static LocalGrid Covering(const geometry::Aabb3& box, double voxel_size_m, double padding_m,
                             std::size_t max_voxels);
 
@@ -24,13 +25,14 @@ struct LocalGrid {
   std::size_t Index(int x, int y, int z) const {
     return static_cast<std::size_t>(x) + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(y) + static_cast<std::size_t>(ny) * z);
   }
-  // Voxel containing p; false when p is outside the grid.
+  // Voxel containing p; false when p is outside the grid (or not finite).
   bool VoxelOf(const Eigen::Vector3f& p, int* x, int* y, int* z) const {
     const double inv = 1.0 / voxel_size_m;
-    const double gx = std::floor((p.x() - origin_world.x()) * inv);
-    const double gy = std::floor((p.y() - origin_world.y()) * inv);
-    const double gz = std::floor((p.z() - origin_world.z()) * inv);
+    const double gx = (p.x() - origin_world.x()) * inv;
+    const double gy = (p.y() - origin_world.y()) * inv;
+    const double gz = (p.z() - origin_world.z()) * inv;
     if (!(gx >= 0 && gy >= 0 && gz >= 0 && gx < nx && gy < ny && gz < nz)) return false;
+    // Non-negative here, so truncation is floor.
     *x = static_cast<int>(gx);
     *y = static_cast<int>(gy);
     *z = static_cast<int>(gz);
@@ -46,6 +48,9 @@ struct LocalGrid {
 // Sets field[v] = 1 for every voxel holding at least one of `points_world` (others untouched).
 void RasterizeIndicator(const LocalGrid& grid, const std::vector<Eigen::Vector3f>& points_world,
                         std::vector<float>* field);
+// Both at once: field[v] = 1 (when field is not null) and mask[v] |= bits.
+void RasterizeIndicatorAndMask(const LocalGrid& grid, const std::vector<Eigen::Vector3f>& points_world,
+                               std::vector<float>* field, std::uint16_t bits, std::vector<std::uint16_t>* mask);
 // ORs `bits` into mask[v] for every voxel holding at least one point.
 void RasterizeMask(const LocalGrid& grid, const std::vector<Eigen::Vector3f>& points_world, std::uint16_t bits,
                    std::vector<std::uint16_t>* mask);

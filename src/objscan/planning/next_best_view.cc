@@ -83,19 +83,22 @@ void NextBestView::Prepare(const NextBestViewInput& input, const geometry::Aabb3
                               static_cast<std::size_t>(options_.max_grid_voxels));
   const std::size_t num_voxels = grid_.NumVoxels();
 
-  BuildTdf(grid_, *input.gamma_points_world, options_.blur_sigma_voxels, &gamma_tdf_, &scratch_);
+  // Indicators and occupancy bits in one pass over each point set, then the blur (the TDFs).
+  mask_.assign(num_voxels, 0);
+  if (input.occluder_points_world != nullptr) {
+    RasterizeIndicatorAndMask(grid_, *input.occluder_points_world, nullptr, kSceneBit, &mask_);
+  }
+  gamma_tdf_.assign(num_voxels, 0.0f);
+  RasterizeIndicatorAndMask(grid_, *input.gamma_points_world, &gamma_tdf_, kSceneBit, &mask_);
+  GaussianBlur3d(grid_, options_.blur_sigma_voxels, &gamma_tdf_, &scratch_);
   model_tdfs_.resize(static_cast<std::size_t>(n) * num_voxels);
   std::vector<float> field;
   for (int i = 0; i < n; ++i) {
-    BuildTdf(grid_, *input.models[i].points_world, options_.blur_sigma_voxels, &field, &scratch_);
+    field.assign(num_voxels, 0.0f);
+    RasterizeIndicatorAndMask(grid_, *input.models[i].points_world, &field,
+                              static_cast<std::uint16_t>(1u << (i + 1)), &mask_);
+    GaussianBlur3d(grid_, options_.blur_sigma_voxels, &field, &scratch_);
     std::copy(field.begin(), field.end(), model_tdfs_.begin() + static_cast<std::ptrdiff_t>(i * num_voxels));
-  }
-
-  mask_.assign(num_voxels, 0);
-  if (input.occluder_points_world != nullptr) RasterizeMask(grid_, *input.occluder_points_world, kSceneBit, &mask_);
-  RasterizeMask(grid_, *input.gamma_points_world, kSceneBit, &mask_);
-  for (int i = 0; i < n; ++i) {
-    RasterizeMask(grid_, *input.models[i].points_world, static_cast<std::uint16_t>(1u << (i + 1)), &mask_);
   }
 
   ChebyshevFreeDistance(grid_.nx, grid_.ny, grid_.nz, mask_.data(), &free_distance_);

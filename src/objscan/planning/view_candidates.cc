@@ -20,6 +20,7 @@ void ViewCandidateOptions::Validate() const {
   config::Require(!ring_elevations_deg.empty(), "ring_elevations_deg", "must list at least one elevation");
   for (double e : ring_elevations_deg) config::RequireInRange("ring_elevations_deg", e, -89.0, 89.0);
   config::Require(fov_fill_fraction > 0.0 && fov_fill_fraction <= 1.0, "fov_fill_fraction", "must be in (0, 1]");
+  config::RequirePositive("nbv.candidates.max_distance_m", max_distance_m);
   config::RequireNonNegative("range_margin_m", range_margin_m);
   config::RequireNonNegative("min_camera_height_m", min_camera_height_m);
   config::Require(max_camera_height_m >= min_camera_height_m, "max_camera_height_m",
@@ -40,6 +41,8 @@ const char* ToString(ViewValidity validity) {
       return "unreachable";
     case ViewValidity::kLineOfSightBlocked:
       return "line_of_sight_blocked";
+    case ViewValidity::kRedundant:
+      return "redundant";
   }
   return "unknown_validity";
 }
@@ -49,9 +52,11 @@ std::vector<geometry::Pose3> GenerateViewCandidates(const Eigen::Vector3d& targe
                                                     const ViewCandidateOptions& options) {
   const double half_fov = std::atan(std::min(frustum.tan_half_fov_x, frustum.tan_half_fov_y));
   const double fit_m = radius_m / std::sin(options.fov_fill_fraction * half_fov);
-  const double near_m = frustum.min_range_m + options.range_margin_m + radius_m;  // closest the object allows
+  // Closest the object allows: its near side beyond the minimum range; for objects larger than
+  // near_radius_cap_m the nearest parts may fall short of it (they are seen from other views).
+  const double near_m = frustum.min_range_m + options.range_margin_m + std::min(radius_m, options.near_radius_cap_m);
   const double far_m = frustum.max_range_m - options.range_margin_m - radius_m;   // farthest it allows
-  const double distance_m = std::max(near_m, std::min(fit_m, far_m));
+  const double distance_m = std::max(near_m, std::min({fit_m, far_m, options.max_distance_m}));
 
   const double tan_down = std::tan(geometry::DegToRad(-options.min_pitch_deg));
   const double tan_up = std::tan(geometry::DegToRad(options.max_pitch_deg));

@@ -32,9 +32,13 @@ struct ViewCandidateOptions {
   int num_candidates = 16;  // n_v
   // Elevation of the candidate above the target as seen from the target; candidate k sits on ring
   // k mod (number of rings) at azimuth 2 pi k / n_v, so every candidate has its own azimuth.
-  std::vector<double> ring_elevations_deg = {15.0, 45.0};
+  std::vector<double> ring_elevations_deg = {10.0, 30.0};
   // The object's bounding sphere may fill at most this fraction of the narrower half field of view.
   double fov_fill_fraction = 0.85;
+  // Candidates come no farther than this from the target (a large object in a small room is then
+  // seen in parts rather than from beyond the walls); never closer than the depth range allows.
+  double max_distance_m = 2.0;
+  double near_radius_cap_m = 0.5;
   double range_margin_m = 0.1;  // keep the object this far inside [min_range, max_range]
   // Reach of the arm holding the camera, and its tilt limits (positive pitch looks up).
   double min_camera_height_m = 0.3;
@@ -47,6 +51,8 @@ struct ViewCandidateOptions {
     v("num_candidates", num_candidates);
     v("ring_elevations_deg", ring_elevations_deg);
     v("fov_fill_fraction", fov_fill_fraction);
+    v("max_distance_m", max_distance_m);
+    v("near_radius_cap_m", near_radius_cap_m);
     v("range_margin_m", range_margin_m);
     v("min_camera_height_m", min_camera_height_m);
     v("max_camera_height_m", max_camera_height_m);
@@ -70,6 +76,7 @@ enum class ViewValidity {
   kUnknown,             // camera inside unexplored space
   kUnreachable,         // the robot cannot get the camera there
   kLineOfSightBlocked,  // something between the camera and the object
+  kRedundant,           // the object was already viewed from (nearly) here
 };
 const char* ToString(ViewValidity validity);
 

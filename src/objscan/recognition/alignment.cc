@@ -9,6 +9,7 @@ namespace objscan::recognition {
 void AlignmentOptions::Validate() const {
   config::Require(yaw_steps >= 1, "recognition.alignment.yaw_steps", "must be at least 1");
   config::Require(coarse_points >= 3, "recognition.alignment.coarse_points", "must be at least 3");
+  config::Require(coarse_keep >= 1, "recognition.alignment.coarse_keep", "must be at least 1");
   config::Require(coarse_iterations >= 0, "recognition.alignment.coarse_iterations", "must be >= 0");
   config::Require(refine_hypotheses >= 1, "recognition.alignment.refine_hypotheses", "must be at least 1");
   config::Require(refine_iterations >= 0, "recognition.alignment.refine_iterations", "must be >= 0");
@@ -201,12 +202,15 @@ AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, co
       Hypothesis h;
       h.x = x;
       h.x.t = Eigen::Vector3d(t_xy.x(), t_xy.y(), tb.min_m.z() - qb.min_m.z());
-      icp.Run(coarse, options.coarse_iterations, &h);
+      icp.Run(coarse, 0, &h);  // initial cost only
       hypotheses.push_back(h);
     }
   }
-  std::stable_sort(hypotheses.begin(), hypotheses.end(),
-                   [](const Hypothesis& a, const Hypothesis& b) { return a.cost < b.cost; });
+  const auto by_cost = [](const Hypothesis& a, const Hypothesis& b) { return a.cost < b.cost; };
+  std::stable_sort(hypotheses.begin(), hypotheses.end(), by_cost);
+  if (static_cast<int>(hypotheses.size()) > options.coarse_keep) hypotheses.resize(options.coarse_keep);
+  for (Hypothesis& h : hypotheses) icp.Run(coarse, options.coarse_iterations, &h);
+  std::stable_sort(hypotheses.begin(), hypotheses.end(), by_cost);
 
   Hypothesis best;
   const int n_refine = std::min<int>(options.refine_hypotheses, static_cast<int>(hypotheses.size()));

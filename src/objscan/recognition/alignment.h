@@ -17,9 +17,10 @@ struct AlignmentOptions {
   int yaw_steps = 24;                 // initial yaw hypotheses, evenly spaced over 360 deg
   bool side_translation_inits = true; // besides centring, align each side of the footprints (partial views)
   int coarse_points = 96;             // query points used in the hypothesis search
-  int coarse_iterations = 5;          // ICP rounds per hypothesis
+  int coarse_keep = 12;               // hypotheses (by initial cost) that get coarse ICP rounds
+  int coarse_iterations = 5;          // ICP rounds per kept hypothesis
   int refine_hypotheses = 3;          // best hypotheses refined with all query points
-  int refine_iterations = 25;
+  int refine_iterations = 20;
   double trim_fraction = 0.85;        // share of best correspondences kept in each ICP round
   double inlier_distance_m = 0.03;    // a query point within this of the item counts as explained
   bool estimate_scale = false;        // uniform scale in [min_scale, max_scale]
@@ -32,6 +33,7 @@ struct AlignmentOptions {
     v("yaw_steps", yaw_steps);
     v("side_translation_inits", side_translation_inits);
     v("coarse_points", coarse_points);
+    v("coarse_keep", coarse_keep);
     v("coarse_iterations", coarse_iterations);
     v("refine_hypotheses", refine_hypotheses);
     v("refine_iterations", refine_iterations);

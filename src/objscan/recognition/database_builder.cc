@@ -56,6 +56,7 @@ std::vector<fs::path> SortedEntries(const fs::path& dir) {
 struct PendingEntry {
   DatabaseEntry entry;
   std::vector<std::uint8_t> descriptors;  // quantised, keypoints x dimension
+  std::vector<Eigen::Vector3f> keypoint_normals;
   geometry::Aabb3 bow_bounds;             // bounds of the full-resolution points (like a query's)
 };
 
@@ -73,14 +74,9 @@ std::vector<Eigen::Vector3f> Select(const std::vector<Eigen::Vector3f>& pts, con
   return out;
 }
 
-PendingModel ScanAndDescribe(const ModelSource& source, int model_index, const DatabaseBuildOptions& options,
-                             const VirtualScanOptions& scan_options, const DescriptorExtractor& descriptor) {
+PendingModel DescribeScan(const ModelScan& scan, world::Category category, const std::string& name,
+                          int model_index, const DatabaseBuildOptions& options, const DescriptorExtractor& descriptor) {
   PendingModel result;
-  const geometry::TriangleMesh mesh = NormalizeModel(source.load_mesh(), TypicalHeight(source.category));
-  if (mesh.Empty()) return result;
-  Rng noise_rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(model_index)));
-  const ModelScan scan = ScanModel(mesh, RingViews(geometry::Bounds(mesh), scan_options), scan_options,
-                                   options.scan_noise, &noise_rng);
   const geometry::PointCloud& surface = scan.surface;
   if (static_cast<int>(surface.size()) < options.min_entry_points) return result;
 
@@ -90,16 +86,17 @@ PendingModel ScanAndDescribe(const ModelSource& source, int model_index, const D
     std::string suffix;
     std::vector<std::int32_t> labels;  // empty = everything
     const std::vector<Eigen::Vector3f>* points;
-    std::vector<Eigen::Vector3f> owned;
+    const std::vector<Eigen::Vector3f>* normals;
+    std::vector<Eigen::Vector3f> owned, owned_normals;
   };
   std::vector<Part> parts;
-  parts.push_back({EntryKind::kFullModel, "", {}, &surface.points, {}});
+  parts.push_back({EntryKind::kFullModel, "", {}, &surface.points, &surface.normals, {}, {}});
   std::vector<std::int32_t> kept_labels;
   if (options.include_components) {
     for (const auto& c : scan.components.components()) {
       if (static_cast<int>(c.points.size()) < options.min_entry_points) continue;
       kept_labels.push_back(c.label);
-      parts.push_back({EntryKind::kComponent, "/c" + std::to_string(c.label), {c.label}, &c.points, {}});
+      parts.push_back({EntryKind::kComponent, "/c" + std::to_string(c.label), {c.label}, &c.points, &c.normals, {}, {}});
     }
   }
   if (options.include_pairs) {
@@ -107,16 +104,21 @@ PendingModel ScanAndDescribe(const ModelSource& source, int model_index, const D
       if (!std::binary_search(kept_labels.begin(), kept_labels.end(), a) ||
           !std::binary_search(kept_labels.begin(), kept_labels.end(), b))
         continue;
-      Part p{EntryKind::kPair, "/p" + std::to_string(a) + "-" + std::to_string(b), {a, b}, nullptr, {}};
+      Part p{EntryKind::kPair, "/p" + std::to_string(a) + "-" + std::to_string(b), {a, b}, nullptr, nullptr, {}, {}};
       const auto* ca = scan.components.Find(a);
       const auto* cb = scan.components.Find(b);
       p.owned = ca->points;
       p.owned.insert(p.owned.end(), cb->points.begin(), cb->points.end());
+      p.owned_normals = ca->normals;
+      p.owned_normals.insert(p.owned_normals.end(), cb->normals.begin(), cb->normals.end());
       parts.push_back(std::move(p));
     }
   }
   for (auto& p : parts) {
-    if (!p.points) p.points = &p.owned;
+    if (!p.points) {
+      p.points = &p.owned;
+      p.normals = &p.owned_normals;
+    }
   }
 
   // Stored points: the full scan thinned; components and pairs index into it.
@@ -132,11 +134,13 @@ PendingModel ScanAndDescribe(const ModelSource& source, int model_index, const D
     PendingEntry pe;
     DatabaseEntry& e = pe.entry;
     e.kind = p.kind;
-    e.category = source.category;
-    e.name = source.name + p.suffix;
+    e.category = category;
+    e.name = name + p.suffix;
     e.model_index = model_index;
     Rng rng(options.keypoint_seed);  // the same seed a query uses
-    e.keypoints = Select(*p.points, SampleKeypointsLloyd(*p.points, options.keypoints, &rng));
+    const std::vector<int> keypoint_indices = SampleKeypointsLloyd(*p.points, options.keypoints, &rng);
+    e.keypoints = Select(*p.points, keypoint_indices);
+    pe.keypoint_normals = Select(*p.normals, keypoint_indices);
     for (const auto& q : *p.points) pe.bow_bounds.Extend(q.cast<double>());
     if (p.kind == EntryKind::kFullModel) {
       e.points = stored_points;
@@ -251,24 +255,20 @@ geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model) {
   return NormalizeModel(mesh, TypicalHeight(model.category));
 }
 
-ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const DatabaseBuildOptions& options,
-                            const ProgressCallback& progress) {
-  options.Validate();
-  const auto descriptor = MakeDescriptorExtractor(options.descriptor);
-  const int n_models = static_cast<int>(sources.size());
-  const int workers = std::min(sim::ResolveThreadCount(options.threads), std::max(1, n_models));
-  VirtualScanOptions scan_options = options.scan;
-  if (workers > 1) scan_options.sensor.threads = 1;  // parallel over models instead of image rows
+namespace {
 
-  std::vector<PendingModel> pending(n_models);
-  std::mutex progress_mutex;
-  int done = 0;
-  sim::ParallelForBlocks(n_models, workers, [&](int m) {
-    pending[m] = ScanAndDescribe(sources[m], m, options, scan_options, *descriptor);
-    std::lock_guard<std::mutex> lock(progress_mutex);
-    ++done;
-    ReportProgress(progress, 0.85 * done / n_models, sources[m].name);
-  });
+struct ModelInfo {
+  world::Category category;
+  std::string name;
+  std::string source;
+};
+
+// Vocabulary, histograms and index from described models.
+ModelDatabase Assemble(std::vector<PendingModel>* pending_models, const std::vector<ModelInfo>& info,
+                       const DatabaseBuildOptions& options, const DescriptorExtractor& descriptor,
+                       const ProgressCallback& progress) {
+  std::vector<PendingModel>& pending = *pending_models;
+  const int n_models = static_cast<int>(pending.size());
 
   ModelDatabase db;
   DatabaseSettings& settings = db.mutable_settings();
@@ -278,7 +278,7 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   settings.bow = options.bow;
 
   // Vocabulary from a seeded sample of all entries' descriptors.
-  const int dim = descriptor->Dimension();
+  const int dim = descriptor.Dimension();
   std::vector<const std::uint8_t*> rows;
   for (const auto& pm : pending) {
     for (const auto& pe : pm.entries) {
@@ -304,14 +304,16 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   for (int m = 0; m < n_models; ++m) {
     if (!pending[m].ok) continue;
     DatabaseModel model;
-    model.name = sources[m].name;
-    model.category = sources[m].category;
-    model.source = sources[m].source;
+    model.name = info[m].name;
+    model.category = info[m].category;
+    model.source = info[m].source;
     const int model_index = static_cast<int>(db.models().size());
     for (auto& pe : pending[m].entries) {
       descriptors.resize(pe.descriptors.size());
       for (std::size_t k = 0; k < descriptors.size(); ++k) descriptors[k] = pe.descriptors[k] / kDescriptorQuantum;
-      pe.entry.bow = ComputeSpatialBow(db.vocabulary(), pe.entry.keypoints, descriptors, pe.bow_bounds, options.bow);
+      pe.entry.bow = ComputeSpatialBow(db.vocabulary(), pe.entry.keypoints, pe.keypoint_normals, descriptors,
+                                       pe.bow_bounds, options.bow);
+      pe.entry.keypoint_normals = std::move(pe.keypoint_normals);
       pe.entry.model_index = model_index;
       if (pe.entry.kind == EntryKind::kFullModel) model.full_entry = static_cast<int>(db.entries().size());
       db.mutable_entries().push_back(std::move(pe.entry));
@@ -323,6 +325,52 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   db.Finalize();
   ReportProgress(progress, 1.0, "done");
   return db;
+}
+
+}  // namespace
+
+ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const DatabaseBuildOptions& options,
+                            const ProgressCallback& progress) {
+  options.Validate();
+  const auto descriptor = MakeDescriptorExtractor(options.descriptor);
+  const int n_models = static_cast<int>(sources.size());
+  const int workers = std::min(sim::ResolveThreadCount(options.threads), std::max(1, n_models));
+  VirtualScanOptions scan_options = options.scan;
+  if (workers > 1) scan_options.sensor.threads = 1;  // parallel over models instead of image rows
+
+  std::vector<PendingModel> pending(n_models);
+  std::vector<ModelInfo> info(n_models);
+  std::mutex progress_mutex;
+  int done = 0;
+  sim::ParallelForBlocks(n_models, workers, [&](int m) {
+    const ModelSource& source = sources[m];
+    info[m] = {source.category, source.name, source.source};
+    const geometry::TriangleMesh mesh = NormalizeModel(source.load_mesh(), TypicalHeight(source.category));
+    if (!mesh.Empty()) {
+      Rng noise_rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(m)));
+      const ModelScan scan = ScanModel(mesh, RingViews(geometry::Bounds(mesh), scan_options), scan_options,
+                                       options.scan_noise, &noise_rng);
+      pending[m] = DescribeScan(scan, source.category, source.name, m, options, *descriptor);
+    }
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    ++done;
+    ReportProgress(progress, 0.85 * done / n_models, source.name);
+  });
+  return Assemble(&pending, info, options, *descriptor, progress);
+}
+
+ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, const DatabaseBuildOptions& options,
+                                     const ProgressCallback& progress) {
+  options.Validate();
+  const auto descriptor = MakeDescriptorExtractor(options.descriptor);
+  const int n_models = static_cast<int>(models.size());
+  std::vector<PendingModel> pending(n_models);
+  std::vector<ModelInfo> info(n_models);
+  sim::ParallelForBlocks(n_models, options.threads, [&](int m) {
+    info[m] = {models[m].category, models[m].name, models[m].source};
+    pending[m] = DescribeScan(models[m].scan, models[m].category, models[m].name, m, options, *descriptor);
+  });
+  return Assemble(&pending, info, options, *descriptor, progress);
 }
 
 }  // namespace objscan::recognition

@@ -79,8 +79,19 @@ std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t firs
 geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model);
 
 // Builds (and finalizes) the database. Throws InputError when a model cannot be loaded or no entry
-// results.
+// results. Models whose scan has fewer than min_entry_points points are left out.
 ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const DatabaseBuildOptions& options,
                             const ProgressCallback& progress = nullptr);
+
+// The same from models scanned already (surface with normals and per-point component labels, and the
+// component graph; an empty graph gives full-model entries only). `scan` options are unused.
+struct ScannedModel {
+  world::Category category = world::Category::kOther;
+  std::string name;
+  std::string source;
+  ModelScan scan;  // in the database frame (Z up, standing on z = 0)
+};
+ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, const DatabaseBuildOptions& options,
+                                     const ProgressCallback& progress = nullptr);
 
 }  // namespace objscan::recognition

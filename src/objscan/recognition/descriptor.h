@@ -18,7 +18,7 @@ struct DescriptorOptions {
   // geometry on a partial view and on the full model (a radius tied to each point set's own bounding
   // box would not, since a partial view has a smaller box).
   double support_radius_m = 0.10;
-  double normal_radius_m = 0.04;    // when the surface comes without normals
+  double normal_radius_m = 0.05;    // PCA normals over this radius (given normals only orient them)
   double surface_voxel_m = 0.025;   // the surface is thinned to this spacing before describing
 
   template <class V>
@@ -36,8 +36,8 @@ class DescriptorExtractor {
   virtual ~DescriptorExtractor() = default;
   virtual std::string Name() const = 0;
   virtual int Dimension() const = 0;
-  // Describes the surface around each keypoint. `surface` may carry normals (used as given) or not
-  // (estimated, oriented away from the surface's centroid). Output: keypoints.size() x Dimension(),
+  // Describes the surface around each keypoint. `surface` may carry normals (used for orientation)
+  // or not (oriented away from the surface's centroid). Output: keypoints.size() x Dimension(),
   // row-major; a keypoint with too little support gets an all-zero row.
   virtual void Compute(const geometry::PointCloud& surface, const std::vector<Eigen::Vector3f>& keypoints,
                        std::vector<float>* descriptors) const = 0;

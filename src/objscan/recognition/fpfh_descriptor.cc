@@ -39,27 +39,24 @@ void FpfhDescriptor::Compute(const geometry::PointCloud& surface, const std::vec
   }
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
 
+  // Normals are always re-estimated by PCA over normal_radius_m of the thinned surface: a single noisy
+  // view and a fused clean scan then get equally smooth normals (per-pixel map normals of one noisy
+  // frame would make the same shape look different). Given normals only decide the orientation.
   pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
-  if (surface.HasNormals()) {
-    normals->reserve(kept.size());
-    for (int i : kept) {
-      const auto& n = surface.normals[i];
-      normals->push_back(pcl::Normal(n.x(), n.y(), n.z()));
-    }
-  } else {
-    pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> estimation;
-    estimation.setInputCloud(cloud);
-    estimation.setSearchMethod(tree);
-    estimation.setRadiusSearch(options_.normal_radius_m);
-    estimation.compute(*normals);
-    // Without a sensor position, orient normals away from the centroid (outward on objects).
-    Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-    for (const auto& p : *cloud) centroid += p.getVector3fMap();
-    centroid /= static_cast<float>(cloud->size());
-    for (std::size_t i = 0; i < cloud->size(); ++i) {
-      Eigen::Map<Eigen::Vector3f> n = (*normals)[i].getNormalVector3fMap();
-      if (n.dot((*cloud)[i].getVector3fMap() - centroid) < 0.f) n = -n;
-    }
+  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> estimation;
+  estimation.setInputCloud(cloud);
+  estimation.setSearchMethod(tree);
+  estimation.setRadiusSearch(options_.normal_radius_m);
+  estimation.compute(*normals);
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (const auto& p : *cloud) centroid += p.getVector3fMap();
+  centroid /= static_cast<float>(cloud->size());
+  for (std::size_t i = 0; i < cloud->size(); ++i) {
+    Eigen::Map<Eigen::Vector3f> n = (*normals)[i].getNormalVector3fMap();
+    // Orientation: towards the sensor side when the surface has normals, else away from the centroid.
+    const Eigen::Vector3f reference = surface.HasNormals() ? surface.normals[kept[i]]
+                                                           : Eigen::Vector3f((*cloud)[i].getVector3fMap() - centroid);
+    if (n.dot(reference) < 0.f) n = -n;
   }
   // Drop surface points without a usable normal (isolated points).
   {

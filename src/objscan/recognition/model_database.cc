@@ -140,6 +140,10 @@ void ModelDatabase::Save(const std::string& path) const {
   w.Pod<std::int32_t>(settings_.bow.height_bands);
   w.Pod<std::int32_t>(settings_.bow.radial_rings);
   w.Pod<double>(settings_.bow.spatial_weight);
+  w.Pod<std::uint32_t>(static_cast<std::uint32_t>(settings_.bow.absolute_height_edges_m.size()));
+  w.Array(settings_.bow.absolute_height_edges_m.data(), settings_.bow.absolute_height_edges_m.size());
+  w.Pod<double>(settings_.bow.absolute_weight);
+  w.Pod<double>(settings_.bow.up_normal_min_z);
   // Vocabulary.
   w.Pod<std::int32_t>(vocabulary_.dimension());
   w.Pod<std::int32_t>(vocabulary_.soft_assignments());
@@ -170,6 +174,7 @@ void ModelDatabase::Save(const std::string& path) const {
       w.Array(e.point_indices.data(), e.point_indices.size());
     }
     w.Points(e.keypoints);
+    w.Points(e.keypoint_normals);
     w.Pod<std::uint32_t>(static_cast<std::uint32_t>(e.bow.size()));
     for (const auto& b : e.bow) {
       w.Pod<std::uint32_t>(b.bin);
@@ -249,6 +254,10 @@ ModelDatabase ModelDatabase::Load(const std::string& path) {
   s.bow.height_bands = r.Pod<std::int32_t>("settings");
   s.bow.radial_rings = r.Pod<std::int32_t>("settings");
   s.bow.spatial_weight = r.Pod<double>("settings");
+  s.bow.absolute_height_edges_m.resize(r.Count(8, "settings"));
+  r.Array(s.bow.absolute_height_edges_m.data(), s.bow.absolute_height_edges_m.size(), "settings");
+  s.bow.absolute_weight = r.Pod<double>("settings");
+  s.bow.up_normal_min_z = r.Pod<double>("settings");
   try {
     s.keypoints.Validate();
     s.descriptor.Validate();
@@ -297,6 +306,8 @@ ModelDatabase ModelDatabase::Load(const std::string& path) {
       r.Array(e.point_indices.data(), n, "entry point indices");
     }
     e.keypoints = r.Points("entry keypoints");
+    e.keypoint_normals = r.Points("entry keypoint normals");
+    if (e.keypoint_normals.size() != e.keypoints.size()) r.Fail("entry keypoint normals");
     const std::uint32_t n_bins = r.Count(8, "entry histogram");
     e.bow.resize(n_bins);
     for (auto& b : e.bow) {

@@ -35,6 +35,7 @@ struct DatabaseEntry {
   std::vector<Eigen::Vector3f> normals;    // one per point
   std::vector<std::int32_t> point_indices; // components and pairs: indices of `points` in the model's full entry
   std::vector<Eigen::Vector3f> keypoints;  // n_p Lloyd keypoints
+  std::vector<Eigen::Vector3f> keypoint_normals;  // unit, outward, one per keypoint
   SparseHistogram bow;
   geometry::Aabb3 bounds;                  // of `points`: the upright frame of the spatial BoW
 };

@@ -6,6 +6,7 @@
 
 #include "objscan/common/rng.h"
 #include "objscan/recognition/keypoints.h"
+#include "objscan/recognition/normals.h"
 
 namespace objscan::recognition {
 
@@ -14,6 +15,10 @@ void RecognitionOptions::Validate() const {
   config::Require(shortlist_size >= num_similar_models, "recognition.shortlist_size",
                   "must be >= num_similar_models");
   config::RequireNonNegative("recognition.bow_rank_weight", bow_rank_weight);
+  config::RequireNonNegative("recognition.fit_rank_weight", fit_rank_weight);
+  config::RequireNonNegative("recognition.objectness_rank_weight", objectness_rank_weight);
+  config::RequireNonNegative("recognition.visible_rank_weight", visible_rank_weight);
+  config::RequireInRange("recognition.visible_min_cos", visible_min_cos, -1.0, 1.0);
   alignment.Validate();
 }
 
@@ -27,14 +32,30 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
 QueryDescription Recognizer::Describe(const geometry::PointCloud& query, const geometry::PointCloud* support) const {
   QueryDescription q;
   if (query.empty()) return q;
+  // Without the map's normals, estimate them once for both the descriptors and the BoW cells.
+  geometry::PointCloud with_normals;
+  const geometry::PointCloud* cloud = &query;
+  if (!query.HasNormals()) {
+    with_normals.points = query.points;
+    with_normals.normals = EstimateNormals(query.points);
+    cloud = &with_normals;
+  }
   const DatabaseSettings& s = database_.settings();
   Rng rng(s.keypoint_seed);  // fixed seed: the same points always get the same keypoints
-  for (int i : SampleKeypointsLloyd(query.points, s.keypoints, &rng)) q.keypoints.push_back(query.points[i]);
-  for (const auto& p : query.points) q.bounds.Extend(p.cast<double>());
+  Eigen::Vector3f normal_sum = Eigen::Vector3f::Zero();
+  for (int i : SampleKeypointsLloyd(cloud->points, s.keypoints, &rng)) {
+    q.keypoints.push_back(cloud->points[i]);
+    q.keypoint_normals.push_back(cloud->normals[i]);
+    normal_sum += cloud->normals[i];
+  }
+  // Map normals face the sensor: their mean points back at it for a view from one side; a query
+  // seen from all around has a short mean and no single view direction.
+  if (query.HasNormals() && normal_sum.norm() > 0.3f * q.keypoints.size()) q.view_direction = normal_sum.normalized();
+  for (const auto& p : cloud->points) q.bounds.Extend(p.cast<double>());
   q.diagonal_m = q.bounds.Diagonal();
   std::vector<float> descriptors;
-  descriptor_->Compute(support ? *support : query, q.keypoints, &descriptors);
-  q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, descriptors, q.bounds, s.bow);
+  descriptor_->Compute(support ? *support : *cloud, q.keypoints, &descriptors);
+  q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, descriptors, q.bounds, s.bow);
   return q;
 }
 
@@ -55,7 +76,24 @@ SimilarModel Recognizer::Match(const QueryDescription& query, int entry) const {
   const double diag = m.alignment.scale * query.diagonal_m;
   m.objectness = ComputeObjectness(c_in_m, c_tree, target.tree(), diag);
   m.fit = diag > 0.0 ? std::exp(-std::sqrt(m.objectness.similarity_m2) / diag) : 0.0;
-  m.rank_score = m.fit;
+  m.visible_objectness = m.objectness.objectness;
+  const DatabaseEntry& e = database_.entries()[entry];
+  if (diag > 0.0 && !query.view_direction.isZero() && e.keypoint_normals.size() == e.keypoints.size()) {
+    const Eigen::Vector3f view_item = (T.linear() * query.view_direction).normalized();
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t k = 0; k < e.keypoints.size(); ++k) {
+      if (e.keypoint_normals[k].dot(view_item) <= options_.visible_min_cos) continue;
+      float d2 = 0.f;
+      c_tree.Nearest(e.keypoints[k], &d2);
+      sum += d2;
+      ++n;
+    }
+    if (n > 0) {
+      m.visible_objectness = std::exp(-std::sqrt(m.objectness.similarity_m2 + sum / n) / diag);
+    }
+  }
+  m.rank_score = m.objectness.objectness;
   return m;
 }
 
@@ -67,7 +105,10 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
   for (const ScoredItem& c : shortlist) {
     SimilarModel m = Match(query, c.item);
     m.bow_score = c.score;
-    m.rank_score = std::pow(std::max(0.f, c.score), options_.bow_rank_weight) * m.fit;
+    m.rank_score = std::pow(std::max(0.f, c.score), options_.bow_rank_weight) *
+                   std::pow(m.fit, options_.fit_rank_weight) *
+                   std::pow(m.objectness.objectness, options_.objectness_rank_weight) *
+                   std::pow(m.visible_objectness, options_.visible_rank_weight);
     result.push_back(std::move(m));
   }
   std::stable_sort(result.begin(), result.end(),

@@ -19,10 +19,17 @@ namespace objscan::recognition {
 struct RecognitionOptions {
   int num_similar_models = 5;  // n_s
   int shortlist_size = 20;     // bag-of-words candidates verified by alignment (>= n_s)
-  // The shortlist is re-ranked by (bag-of-words score)^bow_rank_weight * fit, where fit =
-  // exp(-sqrt(d(c, m)) / Diag(c)) is the similarity half of eq. (1): a partial query is not
-  // penalised for what it has not seen yet, which the completeness half would do.
+  // The shortlist is re-ranked by bow^bow_rank_weight * fit^fit_rank_weight * O^objectness_rank_weight:
+  // bow is the bag-of-words cosine, O the objectness of eq. (1) after alignment and fit =
+  // exp(-sqrt(d(c, m)) / Diag(c)) its similarity half alone, which does not penalise a partial query
+  // for what it has not seen yet.
   double bow_rank_weight = 1.0;
+  double fit_rank_weight = 0.0;
+  double objectness_rank_weight = 1.0;
+  // ... * O_visible^visible_rank_weight, where O_visible is eq. (1) with the completeness term taken
+  // only over the model keypoints facing the query's sensor side (see QueryDescription).
+  double visible_rank_weight = 0.0;
+  double visible_min_cos = 0.2;  // a model keypoint faces the sensor when n . view > this
   AlignmentOptions alignment;
 
   template <class V>
@@ -30,6 +37,10 @@ struct RecognitionOptions {
     v("num_similar_models", num_similar_models);
     v("shortlist_size", shortlist_size);
     v("bow_rank_weight", bow_rank_weight);
+    v("fit_rank_weight", fit_rank_weight);
+    v("objectness_rank_weight", objectness_rank_weight);
+    v("visible_rank_weight", visible_rank_weight);
+    v("visible_min_cos", visible_min_cos);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -38,6 +49,10 @@ struct RecognitionOptions {
 // A query described the way the database entries are.
 struct QueryDescription {
   std::vector<Eigen::Vector3f> keypoints;  // n_p Lloyd keypoints (world frame)
+  std::vector<Eigen::Vector3f> keypoint_normals;
+  // Unit direction from the query towards the sensor that saw it, from the map's normals (which face
+  // the sensor); zero when unknown or when the query was seen from all around.
+  Eigen::Vector3f view_direction = Eigen::Vector3f::Zero();
   geometry::Aabb3 bounds;                  // of the query points
   double diagonal_m = 0.0;                 // Diag(c)
   SparseHistogram bow;
@@ -50,6 +65,7 @@ struct SimilarModel {
   AlignmentResult alignment;  // T_item_query: query (world) -> entry (model frame)
   ObjectnessTerms objectness; // eq. (1) after alignment
   double fit = 0.0;           // exp(-sqrt(d(c, m)) / Diag(c))
+  double visible_objectness = 0.0;  // eq. (1) with completeness over sensor-facing model keypoints
   double rank_score = 0.0;
   // The entry's pose in the query's (world) frame: T_world_model = T_item_query^-1.
   Eigen::Affine3d T_world_model() const { return alignment.T_item_query.inverse(); }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <algorithm>
 #include <map>
 
 namespace objscan::recognition {
@@ -10,6 +11,19 @@ void SpatialBowOptions::Validate() const {
   config::Require(height_bands >= 1, "recognition.bow.height_bands", "must be at least 1");
   config::Require(radial_rings >= 1, "recognition.bow.radial_rings", "must be at least 1");
   config::RequireNonNegative("recognition.bow.spatial_weight", spatial_weight);
+  for (std::size_t i = 0; i < absolute_height_edges_m.size(); ++i) {
+    config::Require(i == 0 || absolute_height_edges_m[i] > absolute_height_edges_m[i - 1],
+                    "recognition.bow.absolute_height_edges_m", "must increase");
+  }
+  config::RequireNonNegative("recognition.bow.absolute_weight", absolute_weight);
+  config::RequireInRange("recognition.bow.up_normal_min_z", up_normal_min_z, 0.0, 1.0);
+}
+
+int AbsoluteCell(const Eigen::Vector3f& p, const Eigen::Vector3f& normal, const SpatialBowOptions& options) {
+  const auto& edges = options.absolute_height_edges_m;
+  const int band = static_cast<int>(std::upper_bound(edges.begin(), edges.end(), static_cast<double>(p.z())) - edges.begin());
+  const int facing = normal.z() > options.up_normal_min_z ? 0 : (normal.z() < -options.up_normal_min_z ? 1 : 2);
+  return 1 + options.NumRelativeCells() + 3 * band + facing;
 }
 
 int SpatialCell(const Eigen::Vector3f& p, const geometry::Aabb3& bounds, const SpatialBowOptions& options) {
@@ -25,31 +39,42 @@ int SpatialCell(const Eigen::Vector3f& p, const geometry::Aabb3& bounds, const S
 }
 
 SparseHistogram ComputeSpatialBow(const Vocabulary& vocabulary, const std::vector<Eigen::Vector3f>& keypoints,
+                                  const std::vector<Eigen::Vector3f>& keypoint_normals,
                                   const std::vector<float>& descriptors, const geometry::Aabb3& bounds,
                                   const SpatialBowOptions& options) {
   const int k = vocabulary.num_words();
   const int dim = vocabulary.dimension();
-  std::map<std::uint32_t, double> global, cells;
-  double global_total = 0.0, cell_total = 0.0;
+  // Bins of each level; every keypoint adds the same total weight to each level, so one total
+  // normalises all three.
+  std::map<std::uint32_t, double> global, relative, absolute;
+  double total = 0.0;
   WordAssignment assigned[8];
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
     const int m = vocabulary.Assign(&descriptors[i * dim], assigned);
     if (m == 0) continue;
     const int cell = SpatialCell(keypoints[i], bounds, options);
+    const Eigen::Vector3f n = i < keypoint_normals.size() ? keypoint_normals[i] : Eigen::Vector3f::Zero();
+    const int abs_cell = AbsoluteCell(keypoints[i], n, options);
     for (int a = 0; a < m; ++a) {
-      global[static_cast<std::uint32_t>(assigned[a].word)] += assigned[a].weight;
-      cells[static_cast<std::uint32_t>(cell * k + assigned[a].word)] += assigned[a].weight;
-      global_total += assigned[a].weight;
-      cell_total += assigned[a].weight;
+      const auto word = static_cast<std::uint32_t>(assigned[a].word);
+      global[word] += assigned[a].weight;
+      relative[static_cast<std::uint32_t>(cell * k) + word] += assigned[a].weight;
+      absolute[static_cast<std::uint32_t>(abs_cell * k) + word] += assigned[a].weight;
+      total += assigned[a].weight;
     }
   }
   SparseHistogram h;
-  h.reserve(global.size() + cells.size());
-  for (const auto& [bin, v] : global) h.push_back({bin, static_cast<float>(v / global_total)});
-  if (options.spatial_weight > 0.0) {
-    for (const auto& [bin, v] : cells) h.push_back({bin, static_cast<float>(options.spatial_weight * v / cell_total)});
-  }
-  return h;  // global bins (< k) come first, then cells: increasing bin order
+  if (!(total > 0.0)) return h;
+  h.reserve(global.size() + relative.size() + absolute.size());
+  auto emit = [&](const std::map<std::uint32_t, double>& level, double weight) {
+    if (weight <= 0.0) return;
+    for (const auto& [bin, v] : level) h.push_back({bin, static_cast<float>(weight * v / total)});
+  };
+  // Levels occupy increasing bin ranges, so the result is sorted.
+  emit(global, 1.0);
+  emit(relative, options.spatial_weight);
+  emit(absolute, options.absolute_weight);
+  return h;
 }
 
 }  // namespace objscan::recognition

@@ -1,10 +1,14 @@
 #pragma once
 // Spatially sensitive bag of words (paper §4.2): word histograms per spatial cell of the item's upright
-// frame, so that two shapes with the same local parts in different places differ. Gravity is known, so
-// the frame is the axis-aligned box of the points: height bands relative to the box, and rings of
-// horizontal distance from the box's vertical axis (yaw does not matter). A global level (all
-// keypoints) is kept beside the cells, like a two-level spatial pyramid, so a partial view whose box
-// is cut still matches on its words.
+// frame, so that two shapes with the same local parts in different places differ. Gravity is known and
+// the floor is at z = 0 (database models stand on it, live objects mostly do), so there are three
+// levels, like a spatial pyramid:
+//   - global: all keypoints (a partial view whose box is cut still matches on its words);
+//   - relative: height bands of the points' axis-aligned box x rings of horizontal distance from the
+//     box's vertical axis (yaw does not matter);
+//   - absolute: height bands above the floor in metres x the keypoint normal's class (facing up, down
+//     or sideways): a seat at 0.45 m, a table top at 0.75 m and a bed at 0.5 m differ here even when
+//     their local shape words do not, and a partial view keeps its heights.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -18,16 +22,24 @@ namespace objscan::recognition {
 struct SpatialBowOptions {
   int height_bands = 3;
   int radial_rings = 2;
-  double spatial_weight = 1.0;  // weight of the cell level against the global level
+  double spatial_weight = 1.0;   // weight of the relative level against the global level
+  std::vector<double> absolute_height_edges_m = {0.15, 0.35, 0.55, 0.8, 1.1, 1.5};
+  double absolute_weight = 1.0;  // weight of the absolute level (0 = off)
+  double up_normal_min_z = 0.7;  // |n.z| above this: facing up / down
 
   template <class V>
   void Visit(V& v) {
     v("height_bands", height_bands);
     v("radial_rings", radial_rings);
     v("spatial_weight", spatial_weight);
+    v("absolute_height_edges_m", absolute_height_edges_m);
+    v("absolute_weight", absolute_weight);
+    v("up_normal_min_z", up_normal_min_z);
   }
   void Validate() const;
-  int NumCells() const { return 1 + height_bands * radial_rings; }
+  int NumRelativeCells() const { return height_bands * radial_rings; }
+  int NumAbsoluteCells() const { return 3 * (static_cast<int>(absolute_height_edges_m.size()) + 1); }
+  int NumCells() const { return 1 + NumRelativeCells() + NumAbsoluteCells(); }
 };
 
 struct HistogramBin {
@@ -37,12 +49,16 @@ struct HistogramBin {
 // Non-zero bins in increasing bin order.
 using SparseHistogram = std::vector<HistogramBin>;
 
-// Spatial cell (1 .. height_bands*radial_rings) of a point in the frame given by `bounds`.
+// Relative cell (1 .. NumRelativeCells()) of a point in the frame given by `bounds`.
 int SpatialCell(const Eigen::Vector3f& p, const geometry::Aabb3& bounds, const SpatialBowOptions& options);
+// Absolute cell (1 + NumRelativeCells() .. NumCells() - 1) of a point and its unit normal.
+int AbsoluteCell(const Eigen::Vector3f& p, const Eigen::Vector3f& normal, const SpatialBowOptions& options);
 
-// Histogram of the keypoints' soft word assignments; each level is L1-normalised (the cell level then
-// scaled by spatial_weight). `descriptors` is keypoints.size() x vocabulary.dimension().
+// Histogram of the keypoints' soft word assignments; each level is L1-normalised and scaled by its
+// weight. `descriptors` is keypoints.size() x vocabulary.dimension(); `keypoint_normals` one unit
+// normal per keypoint (outward).
 SparseHistogram ComputeSpatialBow(const Vocabulary& vocabulary, const std::vector<Eigen::Vector3f>& keypoints,
+                                  const std::vector<Eigen::Vector3f>& keypoint_normals,
                                   const std::vector<float>& descriptors, const geometry::Aabb3& bounds,
                                   const SpatialBowOptions& options);
 

@@ -50,4 +50,32 @@ inline void ChairLike(double spacing_m, std::vector<Eigen::Vector3f>* pts, std::
   }
 }
 
+// A table: a thin top on four legs.
+inline void TableLike(double spacing_m, std::vector<Eigen::Vector3f>* pts, std::vector<Eigen::Vector3f>* normals) {
+  BoxSurface({-0.6, -0.4, 0.70}, {0.6, 0.4, 0.75}, spacing_m, pts, normals);
+  for (double x : {-0.55, 0.5}) {
+    for (double y : {-0.35, 0.3}) BoxSurface({x, y, 0.0}, {x + 0.05, y + 0.05, 0.70}, spacing_m, pts, normals);
+  }
+}
+
+// Shelves: two sides and four boards.
+inline void ShelfLike(double spacing_m, std::vector<Eigen::Vector3f>* pts, std::vector<Eigen::Vector3f>* normals) {
+  BoxSurface({-0.4, -0.15, 0.0}, {-0.38, 0.15, 1.6}, spacing_m, pts, normals);
+  BoxSurface({0.38, -0.15, 0.0}, {0.4, 0.15, 1.6}, spacing_m, pts, normals);
+  for (double z : {0.1, 0.6, 1.1, 1.58}) BoxSurface({-0.38, -0.15, z - 0.02}, {0.38, 0.15, z}, spacing_m, pts, normals);
+}
+
+// A sofa: a long seat block, a back block and two arm blocks.
+inline void SofaLike(double spacing_m, std::vector<Eigen::Vector3f>* pts, std::vector<Eigen::Vector3f>* normals) {
+  BoxSurface({-0.9, -0.4, 0.0}, {0.9, 0.4, 0.42}, spacing_m, pts, normals);
+  BoxSurface({-0.9, -0.4, 0.42}, {0.9, -0.2, 0.85}, spacing_m, pts, normals);
+  BoxSurface({-0.9, -0.2, 0.42}, {-0.75, 0.4, 0.62}, spacing_m, pts, normals);
+  BoxSurface({0.75, -0.2, 0.42}, {0.9, 0.4, 0.62}, spacing_m, pts, normals);
+}
+
+// A cabinet: one closed box.
+inline void CabinetLike(double spacing_m, std::vector<Eigen::Vector3f>* pts, std::vector<Eigen::Vector3f>* normals) {
+  BoxSurface({-0.3, -0.25, 0.0}, {0.3, 0.25, 1.2}, spacing_m, pts, normals);
+}
+
 }  // namespace objscan::recognition::testing

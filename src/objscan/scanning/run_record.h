@@ -33,6 +33,8 @@ struct StepRecord {
   std::vector<NbvCandidateRecord> nbv_candidates;
   int num_components = 0;
   int num_objects = 0;
+  // Why objects of interest were given up or goals skipped in this step (for people reading run.json).
+  std::vector<std::string> notes;
 };
 
 struct ObjectRecord {

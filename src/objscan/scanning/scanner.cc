@@ -42,6 +42,8 @@ namespace {
 // robot stood is free floor, even when the camera never saw it (it is below the field of view).
 class RobotOccupancy : public sim::OccupancySource {
  public:
+  // `radius_m`: the disk around each visited position known to be free. It must exceed the
+  // navigator's inflation radius, or the robot's own position would count as blocked.
   RobotOccupancy(const mapping::OccupancyMap& map, const std::vector<Eigen::Vector2d>& visited, double radius_m)
       : map_(map), visited_(visited), radius_m_(radius_m) {}
   sim::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override {
@@ -78,12 +80,26 @@ class RobotOccupancy : public sim::OccupancySource {
 class MapViewValidator : public planning::ViewValidator {
  public:
   MapViewValidator(const mapping::OccupancyMap& occupancy, const sim::Robot& robot, const sim::Navigator& navigator,
-                   double skip_m)
-      : occupancy_(occupancy), robot_(robot), navigator_(navigator), skip_m_(skip_m) {}
+                   double skip_m, std::vector<geometry::Pose3> earlier_views, double min_separation_m,
+                   double min_separation_deg)
+      : occupancy_(occupancy),
+        robot_(robot),
+        navigator_(navigator),
+        skip_m_(skip_m),
+        earlier_views_(std::move(earlier_views)),
+        min_separation_m_(min_separation_m),
+        min_separation_cos_(std::cos(geometry::DegToRad(min_separation_deg))) {}
 
   planning::ViewValidity Check(const geometry::Pose3& T_world_camera,
                                const Eigen::Vector3d& target_world) const override {
     const Eigen::Vector3d p = T_world_camera.translation();
+    // A view (nearly) repeating an earlier one of this object adds nothing.
+    for (const auto& e : earlier_views_) {
+      if ((e.translation() - p).norm() < min_separation_m_ &&
+          e.linear().col(2).dot(T_world_camera.linear().col(2)) > min_separation_cos_) {
+        return planning::ViewValidity::kRedundant;
+      }
+    }
     const mapping::Occupancy o = occupancy_.Query(p);
     if (o == mapping::Occupancy::kOccupied) return planning::ViewValidity::kOccupied;
     if (o == mapping::Occupancy::kUnknown) return planning::ViewValidity::kUnknown;
@@ -105,6 +121,9 @@ class MapViewValidator : public planning::ViewValidator {
   const sim::Robot& robot_;
   const sim::Navigator& navigator_;
   double skip_m_;
+  std::vector<geometry::Pose3> earlier_views_;
+  double min_separation_m_;
+  double min_separation_cos_;
 };
 
 struct CompletedObject {
@@ -180,13 +199,13 @@ struct Scanner::State {
         post_segmenter(c.postsegmentation, &matcher),
         nbv(c.nbv),
         robot(c.robot, ChooseStart(s, c.robot, c.navigation)),
-        robot_occupancy(occupancy, visited, c.robot.base_radius_m),
+        visited(1, robot.base().xy_m),
+        robot_occupancy(occupancy, visited, c.robot.base_radius_m + c.scanner.known_free_margin_m),
         navigator(robot_occupancy, c.robot.base_radius_m, c.robot.height_m, c.navigation) {
     record.seed = seed;
     record.scene = s.name();
     frustum = planning::CameraFrustum::FromPinhole(c.sensor.width_px, c.sensor.height_px, c.sensor.fx_px,
                                                    c.sensor.fy_px, c.sensor.min_range_m, c.sensor.max_range_m);
-    visited.push_back(robot.base().xy_m);
   }
 
   // --- sensing ---------------------------------------------------------------------------------
@@ -412,15 +431,29 @@ struct Scanner::State {
       input.has_camera_position = true;
       input.camera_position_world = robot.CameraPose().translation();
       const double radius = 0.5 * bounds.Diagonal();
-      MapViewValidator validator(occupancy, robot, navigator, std::max(config.scanner.line_of_sight_skip_m, radius));
+      std::vector<geometry::Pose3> earlier = views_of[nbo.chosen_id];
+      earlier.push_back(robot.CameraPose());
+      MapViewValidator validator(occupancy, robot, navigator, std::max(config.scanner.line_of_sight_skip_m, radius),
+                                 earlier, config.scanner.min_view_separation_m, config.scanner.min_view_separation_deg);
       const planning::NextBestViewResult result = nbv.Plan(input, &validator);
       Charge(step, "nbv", w.ElapsedMs());
       for (const auto& c : result.candidates) {
         step->nbv_candidates.push_back({c.T_world_camera, planning::ToString(c.validity), c.gain.gain});
       }
       const int id = nbo.chosen_id;
-      if (result.status != planning::NbvStatus::kOk ||
-          !MoveCamera(result.candidates[result.best_index].T_world_camera, step)) {
+      bool moved = false;
+      if (result.status == planning::NbvStatus::kOk) {
+        moved = MoveCamera(result.candidates[result.best_index].T_world_camera, step);
+        if (!moved) step->notes.push_back("object " + std::to_string(id) + ": best view not reachable");
+      } else {
+        std::map<std::string, int> why;
+        for (const auto& c : result.candidates) ++why[planning::ToString(c.validity)];
+        std::string note = "object " + std::to_string(id) + ": no valid view (";
+        for (const auto& [k, n] : why) note += k + " " + std::to_string(n) + ", ";
+        note.resize(note.size() - 2);
+        step->notes.push_back(note + ")");
+      }
+      if (!moved) {
         given_up.insert(id);
         step->nbv_candidates.clear();
         if (current_ooi == id) current_ooi = -1;
@@ -431,6 +464,7 @@ struct Scanner::State {
       current_ooi = id;
       step->ooi = id;
       ++views_spent[id];
+      views_of[id].push_back(robot.CameraPose());
       ++record.nbv_views;
       return true;
     }
@@ -462,7 +496,10 @@ struct Scanner::State {
     const Eigen::Vector3d goal = frontiers[choice.best_index].centroid_world;
     visited_goals.push_back(goal);
     Eigen::Vector2d base_xy;
-    if (!navigator.NearestFree(goal.head<2>(), config.scanner.frontier_max_snap_m, &base_xy)) return Termination::kRunning;
+    if (!navigator.NearestFree(goal.head<2>(), config.scanner.frontier_max_snap_m, &base_xy)) {
+      step->notes.push_back("frontier goal has no free cell nearby");
+      return Termination::kRunning;
+    }
     // Look around at the frontier, starting towards the unexplored side.
     const double heading = std::atan2(goal.y() - from.y(), goal.x() - from.x());
     planning::ExplorationOptions look = config.exploration;
@@ -474,7 +511,10 @@ struct Scanner::State {
     for (const auto& T : views) {
       if (!moved) {
         moved = MoveCamera(T, step);
-        if (!moved) break;
+        if (!moved) {
+          step->notes.push_back("frontier view not reachable");
+          break;
+        }
       } else {
         TurnInPlaceView(T, step);
       }
@@ -521,6 +561,7 @@ struct Scanner::State {
   std::map<std::int32_t, std::pair<std::uint64_t, double>> match_revision;  // label -> (revision, size)
   std::set<int> given_up;
   std::map<int, int> views_spent;
+  std::map<int, std::vector<geometry::Pose3>> views_of;  // NBV camera poses per object of interest
   std::vector<Eigen::Vector3d> visited_goals;
   std::vector<Eigen::Vector3f> occluders;
   bool occluders_stale = true;
@@ -572,10 +613,7 @@ bool Scanner::Step() {
       const Termination t = s.ExploreStep(&step);
       if (t != Termination::kRunning) {
         rec.terminated = t;
-        return false;
-      }
-      if (step.views == 0) {
-        // The chosen frontier could not be reached this time; it is remembered as visited.
+        step.notes.push_back(std::string("terminated: ") + TerminationName(t));
       }
     }
   }
@@ -592,7 +630,7 @@ bool Scanner::Step() {
   }
   step.timing_ms["wall"] = step_wall.ElapsedMs();
   rec.steps.push_back(std::move(step));
-  return true;
+  return rec.terminated == Termination::kRunning;
 }
 
 const RunRecord& Scanner::Run(const ProgressCallback& progress) {

@@ -16,6 +16,13 @@ struct ScannerOptions {
   bool remove_noise = true;            // paper: objects with O(r) < 0.05 leave T
   double line_of_sight_skip_m = 0.25;  // occupancy this close to the object's centre does not block
   double frontier_max_snap_m = 1.0;    // a frontier goal moves to the nearest free cell within this
+  // Where the robot has stood is free floor: its footprint plus this margin counts as known free
+  // for navigation even where the camera never looked (the floor right around the base).
+  double known_free_margin_m = 0.15;
+  // An NBV candidate within this distance and angle of an earlier view of the same object (or of
+  // the current camera) is redundant.
+  double min_view_separation_m = 0.4;
+  double min_view_separation_deg = 25.0;
   int threads = 0;                     // 0 = hardware concurrency; results do not depend on it
 
   template <class V>
@@ -29,6 +36,9 @@ struct ScannerOptions {
     v("remove_noise", remove_noise);
     v("line_of_sight_skip_m", line_of_sight_skip_m);
     v("frontier_max_snap_m", frontier_max_snap_m);
+    v("known_free_margin_m", known_free_margin_m);
+    v("min_view_separation_m", min_view_separation_m);
+    v("min_view_separation_deg", min_view_separation_deg);
     v("threads", threads);
   }
   void Validate() const {
@@ -40,6 +50,9 @@ struct ScannerOptions {
     config::Require(min_object_elements >= 1, "scanner.min_object_elements", "must be >= 1");
     config::RequireNonNegative("scanner.line_of_sight_skip_m", line_of_sight_skip_m);
     config::RequirePositive("scanner.frontier_max_snap_m", frontier_max_snap_m);
+    config::RequireNonNegative("scanner.known_free_margin_m", known_free_margin_m);
+    config::RequireNonNegative("scanner.min_view_separation_m", min_view_separation_m);
+    config::RequireInRange("scanner.min_view_separation_deg", min_view_separation_deg, 0.0, 180.0);
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }
 };

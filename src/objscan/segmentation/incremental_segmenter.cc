@@ -1,6 +1,7 @@
 #include "objscan/segmentation/incremental_segmenter.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -15,6 +16,8 @@ void IncrementalSegmenterOptions::Validate() const {
   config::RequireInRange("merge_min_frames", merge_min_frames, 1, 1000);
   config::RequirePositive("vote_weight", vote_weight);
   config::RequireInRange("min_component_elements", min_component_elements, 1, 1 << 24);
+  config::RequirePositive("floor_prior_tolerance_m", floor_prior_tolerance_m);
+  config::RequireInRange("floor_prior_max_tilt_deg", floor_prior_max_tilt_deg, 0.0, 90.0);
 }
 
 IncrementalSegmenter::IncrementalSegmenter(const IncrementalSegmenterOptions& options) : options_(options) {
@@ -33,18 +36,52 @@ std::int32_t IncrementalSegmenter::FindRoot(std::int32_t label) {
   return root;
 }
 
+void IncrementalSegmenter::ClassifyPixels(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
+                                          const mapping::SurfaceMap& map) {
+  const mapping::VertexNormalMap& vnm = association.vertex_normals;
+  const std::size_t n = vnm.valid.size();
+  pixel_class_.assign(n, 0);
+  const Eigen::Matrix3f R = frame.T_world_camera.rotation().cast<float>();
+  const float tz = static_cast<float>(frame.T_world_camera.translation().z());
+  // World z of a camera-frame vector is the last row of R.
+  const Eigen::RowVector3f up_row = R.row(2);
+  const float floor_z = static_cast<float>(options_.floor_prior_height_m);
+  const float floor_tol = static_cast<float>(options_.floor_prior_tolerance_m);
+  const float cos_tilt = static_cast<float>(std::cos(options_.floor_prior_max_tilt_deg * M_PI / 180.0));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!vnm.valid[i]) continue;
+    const std::int32_t e = association.pixel_element[i];
+    if (e >= 0) {
+      const mapping::Structure s = map.structure(static_cast<std::size_t>(e));
+      if (s != mapping::Structure::kNone) {
+        pixel_class_[i] = static_cast<std::uint8_t>(s);
+        continue;
+      }
+    }
+    if (options_.floor_prior && up_row.dot(vnm.normal_camera[i]) >= cos_tilt &&
+        std::fabs(up_row.dot(vnm.vertex_camera[i]) + tz - floor_z) < floor_tol) {
+      pixel_class_[i] = static_cast<std::uint8_t>(mapping::Structure::kFloor);
+    }
+  }
+}
+
 SegmenterUpdateStats IncrementalSegmenter::Update(const sim::DepthFrame& frame,
                                                   const mapping::FrameAssociation& association,
                                                   mapping::SurfaceMap* map) {
   SegmenterUpdateStats stats;
-  SegmentFrame(frame, association.vertex_normals, options_.frame, &frame_segmentation_);
+  const std::size_t n = frame.depth_m.size();
+  if (association.pixel_element.size() != n || association.vertex_normals.valid.size() != n) {
+    throw InputError("IncrementalSegmenter::Update: association does not belong to this frame");
+  }
+  const std::vector<std::uint8_t>* pixel_class = nullptr;
+  if (options_.separate_structure) {
+    ClassifyPixels(frame, association, *map);
+    pixel_class = &pixel_class_;
+  }
+  SegmentFrame(frame, association.vertex_normals, options_.frame, pixel_class, &frame_segmentation_);
   const FrameSegmentation& seg = frame_segmentation_;
   const int num_segments = seg.num_segments();
   stats.frame_segments = num_segments;
-  const std::size_t n = seg.segment.size();
-  if (association.pixel_element.size() != n) {
-    throw InputError("IncrementalSegmenter::Update: association does not belong to this frame");
-  }
 
   // Step 2: overlap of each frame segment with the global labels of its pixels' elements.
   struct Overlap {

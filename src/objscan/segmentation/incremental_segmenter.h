@@ -36,6 +36,17 @@ struct IncrementalSegmenterOptions {
   double vote_weight = 1.0;
   // Components with fewer elements are left out of C (noise).
   int min_component_elements = 20;
+  // Structure never shares a frame segment with objects: pixels fused into elements the map tags
+  // as floor or wall (mapping::StructureDetector) are segmented apart, and so are pixels of the
+  // floor prior (the robot stands on z = floor_prior_height_m) before the detector has run: world
+  // height within floor_prior_tolerance_m of it and normal within floor_prior_max_tilt_deg of +Z.
+  // Without this, thin furniture feet standing on the floor join the floor's segment and the floor
+  // label spreads from object to object.
+  bool separate_structure = true;
+  bool floor_prior = true;
+  double floor_prior_height_m = 0.0;
+  double floor_prior_tolerance_m = 0.03;
+  double floor_prior_max_tilt_deg = 20.0;
 
   template <class V>
   void Visit(V& v) {
@@ -47,6 +58,11 @@ struct IncrementalSegmenterOptions {
     v("merge_min_frames", merge_min_frames);
     v("vote_weight", vote_weight);
     v("min_component_elements", min_component_elements);
+    v("separate_structure", separate_structure);
+    v("floor_prior", floor_prior);
+    v("floor_prior_height_m", floor_prior_height_m);
+    v("floor_prior_tolerance_m", floor_prior_tolerance_m);
+    v("floor_prior_max_tilt_deg", floor_prior_max_tilt_deg);
   }
   void Validate() const;
 };
@@ -79,12 +95,16 @@ class IncrementalSegmenter {
 
  private:
   std::int32_t FindRoot(std::int32_t label);
+  // Fills pixel_class_ (floor / wall / object) for the frame's valid pixels.
+  void ClassifyPixels(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
+                      const mapping::SurfaceMap& map);
 
   IncrementalSegmenterOptions options_;
   std::int32_t next_label_ = 1;
   std::vector<std::int32_t> parent_;  // union-find over labels (index = label)
   std::map<std::pair<std::int32_t, std::int32_t>, int> merge_evidence_;  // frames seen overlapping
   FrameSegmentation frame_segmentation_;
+  std::vector<std::uint8_t> pixel_class_;  // scratch: 0 = object, 1 = floor, 2 = wall
 
   std::map<std::int32_t, Component> cache_;
   ComponentGraph graph_;

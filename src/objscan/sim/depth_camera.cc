@@ -145,6 +145,7 @@ DepthFrame DepthCamera::Render(const geometry::Pose3& T_world_camera, Rng* rng) 
   const double min_range = options_.min_range_m;
   const double max_range = options_.max_range_m;
   const double cos_grazing = std::cos(geometry::DegToRad(options_.grazing_dropout_deg));
+  const double cos2_grazing = cos_grazing * cos_grazing;
   const double edge_jump = options_.edge_dropout_jump_m;
   const int num_noise_blocks = (height + kNoiseRows - 1) / kNoiseRows;
   ParallelForBlocks(num_noise_blocks, options_.threads, [&](int block) {
@@ -163,8 +164,9 @@ DepthFrame DepthCamera::Render(const geometry::Pose3& T_world_camera, Rng* rng) 
           // The ground-truth normal faces the camera (mesh windings are not reliable).
           if (n_dot_d > 0.0) n = -n;
           if (options_.noise) {
-            // Grazing incidence: the projected pattern is too stretched to match.
-            if (std::abs(n_dot_d) < cos_grazing * d.norm()) valid = false;
+            // Grazing incidence: the projected pattern is too stretched to match (compared squared:
+            // no square root per pixel).
+            if (n_dot_d * n_dot_d < cos2_grazing * d.squaredNorm()) valid = false;
             // Depth discontinuity to any 4-neighbour (misses count as infinitely far).
             if (valid && edge_jump > 0.0) {
               const double jump = edge_jump * t;
@@ -177,8 +179,7 @@ DepthFrame DepthCamera::Render(const geometry::Pose3& T_world_camera, Rng* rng) 
               }
             }
             if (valid) {
-              z = t + impl.noise.GaussianSigma(t) * row_rng.Normal();
-              z = impl.noise.Quantise(z, impl.pixel_phase[i]);
+              z = impl.noise.Measure(t, impl.pixel_phase[i], row_rng);
               if (!(z >= min_range && z <= max_range)) valid = false;
             }
           }

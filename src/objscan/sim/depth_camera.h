@@ -1,6 +1,8 @@
 #pragma once
 // Simulated depth camera: ray casts a world::Scene (Embree, hidden in the .cc) and applies a
-// Kinect-style noise model. Rendering is deterministic given the Rng and independent of threads.
+// Kinect-style noise model (depth_noise.h). Rendering is deterministic given the Rng and independent of
+// threads. With noise off the sensor is ideal: exact depth, no quantisation, no dropouts. Pixels with
+// depth 0 also have instance 0 and a zero normal; ground-truth normals face the camera.
 #include <memory>
 
 #include "objscan/common/config.h"

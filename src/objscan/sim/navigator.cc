@@ -234,9 +234,11 @@ std::vector<Eigen::Vector2d> Navigator::Smooth(const std::vector<Eigen::Vector2d
   return out;
 }
 
-std::vector<double> Navigator::DistanceField(const Eigen::Vector2d& start) const {
+std::vector<double> Navigator::Dijkstra(const Eigen::Vector2d& start, const std::vector<std::uint8_t>& target,
+                                        int remaining_targets) const {
   std::vector<double> cost(grid_.NumCells(), kInf);
   if (!IsFree(start)) return cost;
+  const bool stop_early = remaining_targets > 0;
   const Eigen::Vector2i s = grid_.CellOf(start);
   const int w = grid_.width;
   using Entry = std::pair<double, std::size_t>;
@@ -248,6 +250,7 @@ std::vector<double> Navigator::DistanceField(const Eigen::Vector2d& start) const
     const auto [c, index] = open.top();
     open.pop();
     if (c > cost[index]) continue;
+    if (stop_early && target[index] && --remaining_targets == 0) break;
     const int ix = static_cast<int>(index % w), iy = static_cast<int>(index / w);
     for (int m = 0; m < 8; ++m) {
       const int nx = ix + kDx[m], ny = iy + kDy[m];
@@ -261,8 +264,37 @@ std::vector<double> Navigator::DistanceField(const Eigen::Vector2d& start) const
       }
     }
   }
+  return cost;
+}
+
+std::vector<double> Navigator::DistanceField(const Eigen::Vector2d& start) const {
+  std::vector<double> cost = Dijkstra(start, {}, 0);
   for (double& c : cost) c *= grid_.cell_size_m;
   return cost;
+}
+
+std::vector<double> Navigator::PathCosts(const Eigen::Vector2d& start,
+                                         const std::vector<Eigen::Vector2d>& targets) const {
+  std::vector<double> result(targets.size(), kInf);
+  std::vector<std::uint8_t> target_mask(grid_.NumCells(), 0);
+  int distinct = 0;
+  for (const auto& t : targets) {
+    if (!IsFree(t)) continue;
+    const Eigen::Vector2i c = grid_.CellOf(t);
+    std::uint8_t& m = target_mask[grid_.Index(c.x(), c.y())];
+    distinct += m ? 0 : 1;
+    m = 1;
+  }
+  if (distinct == 0) return result;
+  const std::vector<double> cost = Dijkstra(start, target_mask, distinct);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (!IsFree(targets[i])) continue;
+    const Eigen::Vector2i c = grid_.CellOf(targets[i]);
+    const std::size_t index = grid_.Index(c.x(), c.y());
+    // Every target is settled when the search stops, so its cost is final.
+    result[i] = cost[index] * grid_.cell_size_m;
+  }
+  return result;
 }
 
 bool Navigator::NearestFree(const Eigen::Vector2d& xy, double max_distance_m, Eigen::Vector2d* free_xy) const {

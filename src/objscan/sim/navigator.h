@@ -72,6 +72,10 @@ class Navigator {
   // unreachable; all infinity when start is not free. Index as grid().Index(ix, iy).
   std::vector<double> DistanceField(const Eigen::Vector2d& start) const;
 
+  // Grid path length from start to each target (infinity when unreachable or not free), by a
+  // Dijkstra search that stops once every reachable target is settled. Same values as DistanceField.
+  std::vector<double> PathCosts(const Eigen::Vector2d& start, const std::vector<Eigen::Vector2d>& targets) const;
+
   // The free position nearest to xy (cell centre, or xy itself when free) within max_distance_m.
   bool NearestFree(const Eigen::Vector2d& xy, double max_distance_m, Eigen::Vector2d* free_xy) const;
 
@@ -80,6 +84,10 @@ class Navigator {
     return grid_.Contains(ix, iy) && blocked_[grid_.Index(ix, iy)] == 0;
   }
   void Inflate();
+  // Dijkstra from start; stops early once `remaining_targets` marked cells (target[i] != 0) are
+  // settled (pass 0 and an empty mask for the full field). Costs in cells.
+  std::vector<double> Dijkstra(const Eigen::Vector2d& start, const std::vector<std::uint8_t>& target,
+                               int remaining_targets) const;
   std::vector<Eigen::Vector2d> Smooth(const std::vector<Eigen::Vector2d>& points) const;
 
   NavigatorOptions options_;

@@ -169,6 +169,35 @@ TEST(NavigatorTest, LineOfSightOnTheInflatedGrid) {
   EXPECT_TRUE(nav.LineOfSight({1, 1}, {1, 1}));
 }
 
+TEST(NavigatorTest, PathCostsMatchTheFullDistanceField) {
+  world::Scene scene = Room(8, 5);
+  scene.Add(BoxObject({3.8, 0.0, 0}, {4.2, 3.5, 1.0}));
+  scene.Add(BoxObject({5.0, 1.0, 0}, {7.5, 1.1, 1.0}));  // a pen, closed on all sides
+  scene.Add(BoxObject({5.0, 3.4, 0}, {7.5, 3.5, 1.0}));
+  scene.Add(BoxObject({5.0, 1.0, 0}, {5.1, 3.5, 1.0}));
+  scene.Add(BoxObject({7.4, 1.0, 0}, {7.5, 3.5, 1.0}));
+  const GroundTruthOccupancy source(scene);
+  const Navigator nav(source, kRadius, kHeight);
+  const Eigen::Vector2d start(1.0, 1.0);
+  const std::vector<Eigen::Vector2d> targets = {{2.0, 2.0}, {7.0, 0.5}, {6.25, 2.25}, {4.0, 1.0},
+                                                {2.0, 2.0}, {1.0, 1.0}, {7.7, 4.7}};
+  const std::vector<double> field = nav.DistanceField(start);
+  const std::vector<double> costs = nav.PathCosts(start, targets);
+  ASSERT_EQ(costs.size(), targets.size());
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const Eigen::Vector2i c = nav.grid().CellOf(targets[i]);
+    const double expected = nav.IsFree(targets[i]) ? field[nav.grid().Index(c.x(), c.y())]
+                                                   : std::numeric_limits<double>::infinity();
+    EXPECT_EQ(costs[i], expected) << i;
+  }
+  EXPECT_TRUE(std::isfinite(costs[1]));
+  EXPECT_FALSE(std::isfinite(costs[2]));  // inside the pen
+  EXPECT_FALSE(std::isfinite(costs[3]));  // inside the barrier
+  EXPECT_EQ(costs[5], 0.0);
+  // Same as the A* grid length.
+  EXPECT_NEAR(costs[1], nav.Plan(start, targets[1]).grid_length_m, 1e-9);
+}
+
 // --- The robot never plans through furniture of a procedural room. ---
 
 // Triangles of every non-floor object clipped to the band and projected to XY.

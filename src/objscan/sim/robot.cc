@@ -118,16 +118,15 @@ ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const Navigator& 
     }
   }
   bool any_free = false;
-  const std::vector<double> distance = navigator.DistanceField(base_.xy_m);
-  const OccupancyGrid2D& grid = navigator.grid();
+  const std::vector<double> path_cost = navigator.PathCosts(base_.xy_m, candidates);
   double best_cost = std::numeric_limits<double>::infinity();
   Eigen::Vector2d best_xy = Eigen::Vector2d::Zero();
-  for (const auto& xy : candidates) {
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const Eigen::Vector2d& xy = candidates[k];
     if (!navigator.IsFree(xy)) continue;
     any_free = true;
-    const Eigen::Vector2i c = grid.CellOf(xy);
     const bool here = (xy - base_.xy_m).norm() < 1e-12;
-    const double cost = here ? 0.0 : distance[grid.Index(c.x(), c.y())];
+    const double cost = here ? 0.0 : path_cost[k];
     if (cost < best_cost) {
       best_cost = cost;
       best_xy = xy;

@@ -1,0 +1,227 @@
+#include "objscan/eval/run_evaluation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <unordered_map>
+
+#include "objscan/geometry/voxel_key.h"
+#include "objscan/mapping/surface_map.h"
+#include "objscan/segmentation/segmentation_quality.h"
+
+namespace objscan::eval {
+namespace {
+
+constexpr double kOnFloorMaxZ_m = 0.06;  // a ground object's lowest point is this close to the floor
+
+// Surface voxels of every non-structural object: triangles sampled at a fraction of the voxel size.
+std::vector<SurfaceVoxel> SurfaceVoxelsOf(const world::Scene& scene, double voxel_m) {
+  const float inv = static_cast<float>(1.0 / voxel_m);
+  struct Acc {
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    std::map<int, double> area;
+  };
+  std::unordered_map<geometry::VoxelKey, Acc, geometry::VoxelKeyHash> acc;
+  std::vector<geometry::VoxelKey> order;
+  const double step = 0.4 * voxel_m;
+  for (const auto& o : scene.objects()) {
+    if (o.IsStructural()) continue;
+    for (const auto& t : o.mesh.triangles) {
+      const Eigen::Vector3d a = o.T_world_object * o.mesh.vertices[t[0]].cast<double>();
+      const Eigen::Vector3d b = o.T_world_object * o.mesh.vertices[t[1]].cast<double>();
+      const Eigen::Vector3d c = o.T_world_object * o.mesh.vertices[t[2]].cast<double>();
+      const Eigen::Vector3d n = (b - a).cross(c - a);
+      const double area = 0.5 * n.norm();
+      if (area <= 0.0) continue;
+      const int nu = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+      const int nv = std::max(1, static_cast<int>(std::ceil((c - a).norm() / step)));
+      const double w = area / ((nu + 1) * (nv + 1));
+      for (int i = 0; i <= nu; ++i) {
+        for (int j = 0; j <= nv; ++j) {
+          double u = static_cast<double>(i) / nu, v = static_cast<double>(j) / nv;
+          if (u + v > 1.0) {
+            u = 1.0 - u;
+            v = 1.0 - v;
+          }
+          const Eigen::Vector3d p = a + u * (b - a) + v * (c - a);
+          const geometry::VoxelKey k = geometry::KeyOf(p.cast<float>(), inv);
+          auto [it, inserted] = acc.try_emplace(k);
+          if (inserted) order.push_back(k);
+          it->second.normal += w * n.normalized();
+          it->second.area[o.instance_id] += w;
+        }
+      }
+    }
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<SurfaceVoxel> voxels;
+  voxels.reserve(order.size());
+  for (const auto& k : order) {
+    const Acc& a = acc.at(k);
+    SurfaceVoxel v;
+    v.center_world = geometry::CenterOf(k, static_cast<float>(voxel_m)).cast<double>();
+    v.normal_world = a.normal.norm() > 1e-12 ? a.normal.normalized() : Eigen::Vector3d::UnitZ();
+    double best = -1.0;
+    for (const auto& [inst, area] : a.area) {
+      if (area > best) {
+        best = area;
+        v.instance = inst;
+      }
+    }
+    voxels.push_back(v);
+  }
+  return voxels;
+}
+
+}  // namespace
+
+struct RunEvaluator::Impl {
+  const world::Scene& scene;
+  scanning::SystemConfig config;
+  std::vector<world::Category> database_categories;
+  double voxel_m;
+  std::unordered_map<geometry::VoxelKey, int, geometry::VoxelKeyHash> voxel_index;
+  std::unique_ptr<CoverageAccumulator> coverage;
+  std::vector<std::vector<int>> seen_per_view;
+  std::vector<Eigen::Vector3d> camera_per_view;
+
+  Impl(const world::Scene& s, const scanning::SystemConfig& c, std::vector<world::Category> cats)
+      : scene(s), config(c), database_categories(std::move(cats)), voxel_m(c.eval.coverage_voxel_size_m) {
+    std::vector<SurfaceVoxel> voxels = SurfaceVoxelsOf(scene, voxel_m);
+    const float inv = static_cast<float>(1.0 / voxel_m);
+    for (std::size_t i = 0; i < voxels.size(); ++i) {
+      voxel_index[geometry::KeyOf(voxels[i].center_world.cast<float>(), inv)] = static_cast<int>(i);
+    }
+    CoverageOptions options;
+    options.sigma = c.eval.coverage_sigma;
+    options.theta_t_rad = c.eval.coverage_theta_t_rad;
+    options.min_range_m = c.sensor.min_range_m;
+    options.max_range_m = c.sensor.max_range_m;
+    coverage = std::make_unique<CoverageAccumulator>(std::move(voxels), options);
+  }
+};
+
+RunEvaluator::RunEvaluator(const world::Scene& scene, const scanning::SystemConfig& config,
+                           std::vector<world::Category> database_categories)
+    : impl_(std::make_unique<Impl>(scene, config, std::move(database_categories))) {}
+
+RunEvaluator::~RunEvaluator() = default;
+
+int RunEvaluator::num_surface_voxels() const { return static_cast<int>(impl_->coverage->voxels().size()); }
+
+void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame) {
+  Impl& m = *impl_;
+  const float inv = static_cast<float>(1.0 / m.voxel_m);
+  const auto& voxels = m.coverage->voxels();
+  std::vector<char> seen(voxels.size(), 0);
+  std::vector<int> seen_list;
+  const int stride = 2;  // a 5 cm voxel covers several pixels at every valid range
+  for (int v = 0; v < frame.height(); v += stride) {
+    for (int u = 0; u < frame.width(); u += stride) {
+      const std::size_t px = static_cast<std::size_t>(v) * frame.width() + u;
+      if (frame.depth_m[px] <= 0.f) continue;
+      const int instance = frame.gt_instance.empty() ? 0 : frame.gt_instance[px];
+      if (instance <= 0) continue;
+      const Eigen::Vector3f p = frame.PointWorld(u, v).cast<float>();
+      // The voxel of the (noisy) point, or the nearest neighbouring voxel of the same instance.
+      const geometry::VoxelKey k = geometry::KeyOf(p, inv);
+      int best = -1;
+      float best_d = 1e9f;
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            auto it = m.voxel_index.find(geometry::VoxelKey{k.x + dx, k.y + dy, k.z + dz});
+            if (it == m.voxel_index.end() || voxels[it->second].instance != instance) continue;
+            const float d = (voxels[it->second].center_world.cast<float>() - p).squaredNorm();
+            if (d < best_d) {
+              best_d = d;
+              best = it->second;
+            }
+          }
+      if (best >= 0 && !seen[best]) {
+        seen[best] = 1;
+        seen_list.push_back(best);
+      }
+    }
+  }
+  std::sort(seen_list.begin(), seen_list.end());
+  m.coverage->AddView(frame.T_world_camera.translation(), seen_list);
+  m.seen_per_view.push_back(std::move(seen_list));
+  m.camera_per_view.push_back(frame.T_world_camera.translation());
+}
+
+RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const {
+  const Impl& m = *impl_;
+  RunMetrics out;
+  // Ground truth set.
+  std::vector<GroundTruthInstance> truth;
+  std::vector<std::int32_t> structural;
+  for (const auto& o : m.scene.objects()) {
+    if (o.IsStructural()) {
+      structural.push_back(o.instance_id);
+      continue;
+    }
+    GroundTruthInstance g;
+    g.instance_id = o.instance_id;
+    g.category = o.category;
+    g.on_floor = m.scene.ObjectBounds(o).min_m.z() < kOnFloorMaxZ_m;
+    truth.push_back(g);
+  }
+  // Output objects: complete ones, and incomplete ones recognised with enough objectness.
+  std::vector<OutputObject> outputs;
+  for (const auto& o : record.objects) {
+    if (!o.category) continue;
+    if (!o.complete && o.objectness < m.config.eval.recognized_min_objectness) continue;
+    outputs.push_back({*o.category, o.gt_instance > 0 ? o.gt_instance : world::kNoInstance});
+  }
+  const RecognitionResult rec = MatchRecognitions(truth, outputs, m.database_categories);
+  out.recall = rec.all.Recall();
+  out.precision = rec.all.Precision();
+  out.recall_floor = rec.floor.Recall();
+  out.precision_floor = rec.floor.Precision();
+  out.ground_truth_objects = rec.all.ground_truth;
+  out.ground_truth_floor_objects = rec.floor.ground_truth;
+  out.output_objects = rec.all.outputs;
+  out.true_positives = rec.all.true_positives;
+  out.per_category = rec.per_category;
+
+  // Segmentation quality over the reconstructed non-structural points.
+  const mapping::SurfaceMap& map = scanner.surface_map();
+  std::vector<int> object_id, category_id;
+  scanner.ElementObjects(&object_id, &category_id);
+  std::vector<std::int32_t> segment, instance;
+  segment.reserve(map.size());
+  instance.reserve(map.size());
+  for (std::size_t e = 0; e < map.size(); ++e) {
+    if (map.structure(e) != mapping::Structure::kNone) continue;
+    // Points outside every object keep their pre-segment (negated, so ids never collide).
+    segment.push_back(object_id[e] >= 0 ? object_id[e] : -1 - map.label(e));
+    instance.push_back(map.gt_instance(e));
+  }
+  out.rand_index = NonStructuralRandIndex(segment, instance, truth);
+  const auto preseg = segmentation::EvaluatePresegmentation(map, structural);
+  out.rand_index_preseg = preseg.rand_index_preseg;
+  out.preseg_purity = preseg.preseg_purity;
+
+  // Coverage with δ_detect on matched instances, and after each view.
+  const std::vector<int>& detected = rec.matched_instances;
+  const CoverageResult cov = m.coverage->Result(detected);
+  out.coverage_rate = cov.rate;
+  out.coverage_quality = cov.quality;
+  CoverageAccumulator curve(m.coverage->voxels(), CoverageOptions{m.config.eval.coverage_sigma,
+                                                                   m.config.eval.coverage_theta_t_rad,
+                                                                   m.config.sensor.min_range_m,
+                                                                   m.config.sensor.max_range_m});
+  for (std::size_t i = 0; i < m.seen_per_view.size(); ++i) {
+    curve.AddView(m.camera_per_view[i], m.seen_per_view[i]);
+    const CoverageResult c = curve.Result(detected);
+    out.coverage_per_view.emplace_back(c.rate, c.quality);
+  }
+  out.travel_m = record.travel_m;
+  out.views = record.views;
+  out.nbo_count = record.nbo_count;
+  out.nbv_per_object = record.NbvPerObject();
+  return out;
+}
+
+}  // namespace objscan::eval

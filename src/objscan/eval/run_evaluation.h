@@ -1,0 +1,58 @@
+#pragma once
+// Scores a scanning run against the simulated world's ground truth with the paper's metrics:
+// recognition recall/precision (all objects and those on the floor), Rand Index of the object-level
+// segmentation and of the pre-segmentation, pre-segment purity, and object coverage rate and quality.
+// Coverage is accumulated from the frames the robot takes (their ground-truth channels), so the
+// evaluator observes the run through the scanner's frame observer.
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "objscan/eval/metrics.h"
+#include "objscan/scanning/run_record.h"
+#include "objscan/scanning/scanner.h"
+#include "objscan/sim/depth_frame.h"
+#include "objscan/world/scene.h"
+
+namespace objscan::eval {
+
+struct RunMetrics {
+  double recall = 0.0, precision = 0.0;
+  double recall_floor = 0.0, precision_floor = 0.0;
+  int ground_truth_objects = 0, ground_truth_floor_objects = 0, output_objects = 0, true_positives = 0;
+  double rand_index = 0.0, rand_index_preseg = 0.0, preseg_purity = 0.0;
+  double coverage_rate = 0.0, coverage_quality = 0.0;
+  double travel_m = 0.0;
+  int views = 0, nbo_count = 0;
+  double nbv_per_object = 0.0;
+  // Per object category: ground truth count, outputs and true positives (Table 2).
+  std::array<RecognitionCounts, world::kNumCategories> per_category{};
+  // Coverage after each view (rate, quality), for Fig. 11-style curves.
+  std::vector<std::pair<double, double>> coverage_per_view;
+};
+
+class RunEvaluator {
+ public:
+  // `database_categories`: categories the model database knows (the ground-truth set is every
+  // non-structural object of those categories).
+  RunEvaluator(const world::Scene& scene, const scanning::SystemConfig& config,
+               std::vector<world::Category> database_categories);
+  ~RunEvaluator();
+
+  // Feeds one frame (call from the scanner's frame observer).
+  void ObserveFrame(const sim::DepthFrame& frame);
+
+  // Scores the finished run. Also fills record->objects[i].gt_instance when it was unknown.
+  RunMetrics Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const;
+
+  // Instance ids matched by true positives at the last Evaluate (for δ_detect).
+  int num_surface_voxels() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace objscan::eval

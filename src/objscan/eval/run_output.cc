@@ -1,0 +1,280 @@
+#include "objscan/eval/run_output.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "objscan/common/error.h"
+#include "objscan/io/atomic_file.h"
+#include "objscan/io/canvas.h"
+#include "objscan/io/ply.h"
+#include "objscan/mapping/surface_map.h"
+#include "objscan/recognition/database_builder.h"
+
+namespace objscan::eval {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json PoseJson(const geometry::Pose3& T) {
+  double yaw = 0, pitch = 0;
+  geometry::YawPitchOfCamera(T, &yaw, &pitch);
+  const Eigen::Quaterniond q(T.linear());
+  return Json{{"xyz", {T.translation().x(), T.translation().y(), T.translation().z()}},
+              {"quat_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+              {"yaw_deg", geometry::RadToDeg(yaw)},
+              {"pitch_deg", geometry::RadToDeg(pitch)}};
+}
+
+Json ModelPoseJson(const geometry::Pose3& T) {
+  const Eigen::Vector3d x = T.linear().col(0);
+  return Json{{"xyz", {T.translation().x(), T.translation().y(), T.translation().z()}},
+              {"yaw_deg", geometry::RadToDeg(std::atan2(x.y(), x.x()))}};
+}
+
+}  // namespace
+
+std::string RunJson(const RunOutputInputs& in) {
+  const scanning::RunRecord& r = *in.record;
+  Json j;
+  j["scene"] = in.scene_spec;
+  j["seed"] = r.seed;
+  j["database"] = in.database_path;
+  j["config"] = Json::parse(scanning::ToJson(*in.config));
+  j["terminated"] = scanning::TerminationName(r.terminated);
+  Json steps = Json::array();
+  for (const auto& s : r.steps) {
+    Json step{{"index", s.index},
+              {"action", s.action},
+              {"look_around", s.look_around},
+              {"ooi", s.ooi},
+              {"views", s.views},
+              {"pose", PoseJson(s.T_world_camera)},
+              {"travel_m", s.travel_m},
+              {"components", s.num_components},
+              {"objects", s.num_objects}};
+    Json timing = Json::object();
+    for (const char* stage : {"sense", "fuse", "segment", "recognize", "nbo", "nbv", "navigate_sim", "wall"}) {
+      auto it = s.timing_ms.find(stage);
+      timing[stage] = it == s.timing_ms.end() ? 0.0 : it->second;
+    }
+    step["timing_ms"] = timing;
+    if (!s.notes.empty()) step["notes"] = s.notes;
+    if (!s.nbv_candidates.empty()) {
+      Json cands = Json::array();
+      for (const auto& c : s.nbv_candidates) {
+        cands.push_back(Json{{"pose", PoseJson(c.T_world_camera)}, {"validity", c.validity}, {"gain", c.gain}});
+      }
+      step["nbv_candidates"] = cands;
+    }
+    steps.push_back(step);
+  }
+  j["steps"] = steps;
+  Json objects = Json::array();
+  for (const auto& o : r.objects) {
+    Json obj{{"id", o.id},
+             {"category", o.category ? world::CategoryName(*o.category) : nullptr},
+             {"model", o.model},
+             {"objectness", o.objectness},
+             {"complete", o.complete},
+             {"given_up", o.given_up},
+             {"pose", ModelPoseJson(o.T_world_model)},
+             {"points", o.points}};
+    if (o.gt_instance > 0) obj["gt_instance"] = o.gt_instance;
+    objects.push_back(obj);
+  }
+  j["objects"] = objects;
+  if (in.metrics) {
+    const RunMetrics& m = *in.metrics;
+    Json metrics{{"recall", m.recall},
+                 {"precision", m.precision},
+                 {"recall_floor", m.recall_floor},
+                 {"precision_floor", m.precision_floor},
+                 {"ground_truth_objects", m.ground_truth_objects},
+                 {"ground_truth_floor_objects", m.ground_truth_floor_objects},
+                 {"output_objects", m.output_objects},
+                 {"true_positives", m.true_positives},
+                 {"rand_index", m.rand_index},
+                 {"rand_index_preseg", m.rand_index_preseg},
+                 {"preseg_purity", m.preseg_purity},
+                 {"coverage_rate", m.coverage_rate},
+                 {"coverage_quality", m.coverage_quality},
+                 {"travel_m", m.travel_m},
+                 {"views", m.views},
+                 {"nbo_count", m.nbo_count},
+                 {"nbv_per_object", m.nbv_per_object}};
+    Json per_category = Json::object();
+    for (int c = 0; c < world::kNumObjectCategories; ++c) {
+      const auto& k = m.per_category[c];
+      if (k.ground_truth == 0 && k.outputs == 0) continue;
+      per_category[world::CategoryName(static_cast<world::Category>(c))] =
+          Json{{"ground_truth", k.ground_truth}, {"outputs", k.outputs}, {"true_positives", k.true_positives}};
+    }
+    metrics["per_category"] = per_category;
+    Json curve = Json::array();
+    for (const auto& [rate, quality] : m.coverage_per_view) curve.push_back({rate, quality});
+    metrics["coverage_per_view"] = curve;
+    j["metrics"] = metrics;
+  }
+  j["timing_s"] = Json{{"total", r.timing_s.total},         {"sense", r.timing_s.sense},
+                       {"fuse", r.timing_s.fuse},           {"segment", r.timing_s.segment},
+                       {"recognize", r.timing_s.recognize}, {"nbo", r.timing_s.nbo},
+                       {"nbv", r.timing_s.nbv},             {"navigate_sim", r.timing_s.navigate_sim}};
+  return j.dump(2) + "\n";
+}
+
+void WriteRunTopView(const std::string& path, const RunOutputInputs& in) {
+  const mapping::SurfaceMap& map = in.scanner->surface_map();
+  std::vector<int> object_id, category_id;
+  in.scanner->ElementObjects(&object_id, &category_id);
+  geometry::Aabb3 box = map.Bounds();
+  for (const auto& t : in.record->trajectory) box.Extend(t.T_world_camera.translation());
+  if (box.Empty()) box.Extend(Eigen::Vector3d::Zero());
+  const double mpp = 0.01;
+  const io::WorldToPixel to_px(box, mpp, 40);
+  const int legend_w = 230;
+  io::Canvas canvas(to_px.width_px() + legend_w, std::max(to_px.height_px(), 420), {255, 255, 255});
+  // Elements drawn from low to high so tops cover what is below.
+  std::vector<std::size_t> order(map.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return map.position(a).z() < map.position(b).z(); });
+  std::set<int> categories_present;
+  const int dot = std::max(1, static_cast<int>(std::ceil(map.voxel_size_m() / mpp)));
+  for (std::size_t e : order) {
+    const Eigen::Vector2d p = to_px.ToPixel(map.position(e).cast<double>());
+    io::Rgb color;
+    const int cat = category_id[e];
+    if (cat == world::CategoryId(world::Category::kFloor)) {
+      color = {235, 235, 235};
+    } else if (cat == world::CategoryId(world::Category::kWall)) {
+      color = {70, 70, 70};
+    } else if (cat >= 0) {
+      const auto c = world::CategoryColor(static_cast<world::Category>(cat));
+      color = io::ShadeRgb({c[0], c[1], c[2]}, 0.75 + 0.25 * std::min(1.0, map.position(e).z() / 1.5));
+      categories_present.insert(cat);
+    } else {
+      color = {165, 165, 165};
+    }
+    canvas.FillRect(static_cast<int>(p.x()), static_cast<int>(p.y()), static_cast<int>(p.x()) + dot,
+                    static_cast<int>(p.y()) + dot, color);
+  }
+  // Robot path and views.
+  std::vector<Eigen::Vector2d> path_px;
+  for (const auto& t : in.record->trajectory) path_px.push_back(to_px.ToPixel(t.x_m, t.y_m));
+  canvas.DrawPolyline(path_px, {220, 30, 30}, 2.0);
+  for (const auto& t : in.record->trajectory) {
+    if (!t.view) continue;
+    const Eigen::Vector3d c = t.T_world_camera.translation();
+    Eigen::Vector3d f = t.T_world_camera.linear().col(2);
+    f.z() = 0.0;
+    if (f.norm() < 1e-6) f = Eigen::Vector3d::UnitX();
+    f.normalize();
+    canvas.DrawArrow(to_px.ToPixel(c), to_px.ToPixel(c + 0.35 * f), {20, 20, 160}, 1.5, 7.0);
+    canvas.FillCircle(to_px.ToPixel(c), 3.0, {255, 255, 255});
+    canvas.DrawCircle(to_px.ToPixel(c), 3.0, {20, 20, 160}, 1.0);
+  }
+  if (!in.record->trajectory.empty()) {
+    canvas.FillCircle(path_px.front(), 6.0, {220, 30, 30});
+  }
+  // Legend.
+  int y = 12;
+  const int x0 = to_px.width_px() + 10;
+  canvas.DrawText(x0, y, "objscan run", {0, 0, 0}, 2);
+  y += 24;
+  std::ostringstream summary;
+  summary << in.record->views << " views, " << std::fixed << std::setprecision(1) << in.record->travel_m << " m";
+  canvas.DrawText(x0, y, summary.str(), {0, 0, 0}, 1);
+  y += 14;
+  if (in.metrics) {
+    std::ostringstream m;
+    m << std::fixed << std::setprecision(2) << "recall " << in.metrics->recall << " prec " << in.metrics->precision;
+    canvas.DrawText(x0, y, m.str(), {0, 0, 0}, 1);
+    y += 14;
+  }
+  y += 6;
+  for (int cat : categories_present) {
+    const auto c = world::CategoryColor(static_cast<world::Category>(cat));
+    canvas.FillRect(x0, y, x0 + 14, y + 14, {c[0], c[1], c[2]});
+    canvas.DrawText(x0 + 20, y + 3, world::CategoryName(static_cast<world::Category>(cat)), {0, 0, 0}, 1);
+    y += 18;
+  }
+  canvas.FillRect(x0, y, x0 + 14, y + 14, {165, 165, 165});
+  canvas.DrawText(x0 + 20, y + 3, "unrecognized", {0, 0, 0}, 1);
+  y += 18;
+  canvas.DrawLine({double(x0), y + 8.0}, {x0 + 14.0, y + 8.0}, {220, 30, 30}, 2.0);
+  canvas.DrawText(x0 + 20, y + 3, "robot path", {0, 0, 0}, 1);
+  y += 18;
+  canvas.DrawArrow({double(x0), y + 8.0}, {x0 + 14.0, y + 8.0}, {20, 20, 160}, 1.5, 6.0);
+  canvas.DrawText(x0 + 20, y + 3, "view", {0, 0, 0}, 1);
+  canvas.SavePng(path);
+}
+
+void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw InputError(out_dir + ": cannot create output folder: " + ec.message());
+  const fs::path dir(out_dir);
+
+  // scene.ply: the reconstructed surface with object and category ids.
+  const mapping::SurfaceMap& map = in.scanner->surface_map();
+  std::vector<int> object_id, category_id;
+  in.scanner->ElementObjects(&object_id, &category_id);
+  io::PlyData scene;
+  scene.points.reserve(map.size());
+  scene.normals.reserve(map.size());
+  for (std::size_t e = 0; e < map.size(); ++e) {
+    scene.points.push_back(map.position(e));
+    scene.normals.push_back(map.normal(e));
+  }
+  scene.int_properties.emplace_back("object_id", std::vector<std::int32_t>(object_id.begin(), object_id.end()));
+  scene.int_properties.emplace_back("category_id", std::vector<std::int32_t>(category_id.begin(), category_id.end()));
+  io::WritePly((dir / "scene.ply").string(), scene);
+
+  // models.ply: the database models that replaced complete objects, placed.
+  io::PlyData models;
+  std::vector<std::int32_t> model_object, model_category;
+  for (const auto& o : in.record->objects) {
+    if (!o.complete || o.model_index < 0) continue;
+    const auto& model = in.database->models()[o.model_index];
+    geometry::TriangleMesh mesh;
+    try {
+      mesh = recognition::LoadModelSourceMesh(model);
+    } catch (const InputError&) {
+      // The source mesh is gone: fall back to the database scan points.
+      for (const auto& p : in.database->entries()[model.full_entry].points) mesh.vertices.push_back(p);
+    }
+    const int offset = static_cast<int>(models.points.size());
+    for (const auto& v : mesh.vertices) {
+      models.points.push_back((o.T_world_model * v.cast<double>()).cast<float>());
+      model_object.push_back(o.id);
+      model_category.push_back(o.category ? world::CategoryId(*o.category) : -1);
+    }
+    for (const auto& t : mesh.triangles) models.triangles.push_back(t + Eigen::Vector3i::Constant(offset));
+  }
+  models.int_properties.emplace_back("object_id", model_object);
+  models.int_properties.emplace_back("category_id", model_category);
+  io::WritePly((dir / "models.ply").string(), models);
+
+  // trajectory.csv
+  std::ostringstream csv;
+  csv << "step,time_s,base_x_m,base_y_m,base_theta_deg,camera_x_m,camera_y_m,camera_z_m,camera_yaw_deg,camera_pitch_deg,view\n";
+  csv << std::fixed << std::setprecision(4);
+  for (const auto& t : in.record->trajectory) {
+    double yaw = 0, pitch = 0;
+    geometry::YawPitchOfCamera(t.T_world_camera, &yaw, &pitch);
+    csv << t.step << ',' << t.time_s << ',' << t.x_m << ',' << t.y_m << ',' << geometry::RadToDeg(t.theta_rad) << ','
+        << t.T_world_camera.translation().x() << ',' << t.T_world_camera.translation().y() << ','
+        << t.T_world_camera.translation().z() << ',' << geometry::RadToDeg(yaw) << ',' << geometry::RadToDeg(pitch)
+        << ',' << (t.view ? 1 : 0) << '\n';
+  }
+  io::WriteFileAtomically((dir / "trajectory.csv").string(), csv.str());
+  WriteRunTopView((dir / "topview.png").string(), in);
+  io::WriteFileAtomically((dir / "run.json").string(), RunJson(in));
+}
+
+}  // namespace objscan::eval

@@ -1,0 +1,31 @@
+#pragma once
+// Writes the output folder of `objscan run` (DESIGN.md): run.json, scene.ply, models.ply,
+// trajectory.csv and topview.png. Each file is written atomically.
+#include <string>
+
+#include "objscan/eval/run_evaluation.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/scanning/run_record.h"
+#include "objscan/scanning/scanner.h"
+
+namespace objscan::eval {
+
+struct RunOutputInputs {
+  const scanning::RunRecord* record = nullptr;
+  const scanning::Scanner* scanner = nullptr;
+  const recognition::ModelDatabase* database = nullptr;
+  const scanning::SystemConfig* config = nullptr;
+  const RunMetrics* metrics = nullptr;  // null when no ground truth
+  std::string scene_spec;
+  std::string database_path;
+};
+
+// JSON text of run.json.
+std::string RunJson(const RunOutputInputs& in);
+// Writes all files into `out_dir` (created when missing). Throws InputError naming the path.
+void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in);
+// Draws the reconstruction from above: objects coloured by category, unrecognised surface grey,
+// robot path and view directions.
+void WriteRunTopView(const std::string& path, const RunOutputInputs& in);
+
+}  // namespace objscan::eval

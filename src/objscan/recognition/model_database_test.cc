@@ -1,0 +1,149 @@
+#include "objscan/recognition/model_database.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "objscan/common/error.h"
+#include "objscan/recognition/test_database.h"
+
+namespace objscan::recognition {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ModelDatabaseTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    db_ = new ModelDatabase(BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions()));
+  }
+  static void TearDownTestSuite() {
+    delete db_;
+    db_ = nullptr;
+  }
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("objscan_db_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::vector<char> ReadBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::vector<char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+  void WriteBytes(const fs::path& p, const std::vector<char>& bytes) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  // Loading must throw InputError whose message names the file.
+  void ExpectRejected(const fs::path& p, const std::string& what) {
+    try {
+      ModelDatabase::Load(p.string());
+      ADD_FAILURE() << "loaded a " << what << " database";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line: " << e.what();
+    }
+  }
+
+  static ModelDatabase* db_;
+  fs::path dir_;
+};
+ModelDatabase* ModelDatabaseTest::db_ = nullptr;
+
+TEST_F(ModelDatabaseTest, HoldsFullModelsComponentsAndPairsWithTheModelsCategory) {
+  const ModelDatabase& db = *db_;
+  ASSERT_EQ(db.models().size(), 5u);
+  int full = 0, components = 0, pairs = 0;
+  for (const auto& e : db.entries()) {
+    full += e.kind == EntryKind::kFullModel;
+    components += e.kind == EntryKind::kComponent;
+    pairs += e.kind == EntryKind::kPair;
+    EXPECT_EQ(e.category, db.models()[e.model_index].category);
+    EXPECT_FALSE(e.bow.empty());
+    if (e.kind == EntryKind::kFullModel) {
+      EXPECT_EQ(e.keypoints.size(), 500u);
+    } else {
+      EXPECT_GT(e.keypoints.size(), 20u);
+    }
+  }
+  EXPECT_EQ(full, 5);
+  EXPECT_EQ(components, 5);  // the table's top and four legs
+  EXPECT_EQ(pairs, 4);       // top with each leg
+  for (const auto& m : db.models()) EXPECT_EQ(db.entries()[m.full_entry].kind, EntryKind::kFullModel);
+}
+
+TEST_F(ModelDatabaseTest, SaveLoadRoundTrip) {
+  const fs::path path = dir_ / "shapes.db";
+  db_->Save(path.string());
+  const ModelDatabase loaded = ModelDatabase::Load(path.string());
+  ASSERT_EQ(loaded.entries().size(), db_->entries().size());
+  ASSERT_EQ(loaded.models().size(), db_->models().size());
+  EXPECT_EQ(loaded.vocabulary().words(), db_->vocabulary().words());
+  EXPECT_EQ(loaded.settings().keypoints.num_keypoints, db_->settings().keypoints.num_keypoints);
+  EXPECT_EQ(loaded.settings().descriptor.support_radius_m, db_->settings().descriptor.support_radius_m);
+  for (std::size_t i = 0; i < loaded.entries().size(); ++i) {
+    const auto& a = loaded.entries()[i];
+    const auto& b = db_->entries()[i];
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(a.category, b.category);
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.keypoints, b.keypoints);
+    EXPECT_EQ(a.points, b.points);  // components re-materialised from their model's full scan
+    EXPECT_EQ(a.normals, b.normals);
+    ASSERT_EQ(a.bow.size(), b.bow.size());
+    for (std::size_t k = 0; k < a.bow.size(); ++k) {
+      EXPECT_EQ(a.bow[k].bin, b.bow[k].bin);
+      EXPECT_EQ(a.bow[k].value, b.bow[k].value);
+    }
+  }
+  EXPECT_TRUE(loaded.finalized());
+}
+
+TEST_F(ModelDatabaseTest, RejectsCorruptTruncatedForeignAndOldFiles) {
+  const fs::path good = dir_ / "good.db";
+  db_->Save(good.string());
+  const std::vector<char> bytes = ReadBytes(good);
+
+  ExpectRejected(dir_ / "missing.db", "missing");
+
+  std::vector<char> corrupt = bytes;
+  corrupt[corrupt.size() / 2] ^= 0x5A;
+  WriteBytes(dir_ / "corrupt.db", corrupt);
+  ExpectRejected(dir_ / "corrupt.db", "corrupt");
+
+  for (std::size_t cut : {bytes.size() - 1, bytes.size() / 3, std::size_t{20}, std::size_t{5}}) {
+    WriteBytes(dir_ / "truncated.db", std::vector<char>(bytes.begin(), bytes.begin() + cut));
+    ExpectRejected(dir_ / "truncated.db", "truncated");
+  }
+
+  WriteBytes(dir_ / "foreign.db", std::vector<char>{'s', 'o', 'l', 'i', 'd', ' ', 'f', 'o', 'o', '\n', 0, 0});
+  ExpectRejected(dir_ / "foreign.db", "foreign");
+
+  std::vector<char> old = bytes;
+  old[8] = 0;  // version 0 (little-endian u32 after the 8-byte magic)
+  WriteBytes(dir_ / "old.db", old);
+  ExpectRejected(dir_ / "old.db", "old");
+  try {
+    ModelDatabase::Load((dir_ / "old.db").string());
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("version"), std::string::npos) << e.what();
+  }
+
+  std::vector<char> trailing = bytes;
+  trailing.push_back(0);
+  WriteBytes(dir_ / "trailing.db", trailing);
+  ExpectRejected(dir_ / "trailing.db", "trailing");
+}
+
+TEST_F(ModelDatabaseTest, SaveFailureLeavesNoFile) {
+  const fs::path path = dir_ / "no_such_dir" / "x.db";
+  EXPECT_THROW(db_->Save(path.string()), InputError);
+  EXPECT_FALSE(fs::exists(path));
+}
+
+}  // namespace
+}  // namespace objscan::recognition

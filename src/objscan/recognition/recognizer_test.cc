@@ -1,0 +1,110 @@
+#include "objscan/recognition/recognizer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "objscan/geometry/pose.h"
+#include "objscan/recognition/test_database.h"
+
+namespace objscan::recognition {
+namespace {
+
+class RecognizerTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    db_ = new ModelDatabase(BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions()));
+  }
+  static void TearDownTestSuite() {
+    delete db_;
+    db_ = nullptr;
+  }
+  static ModelDatabase* db_;
+};
+ModelDatabase* RecognizerTest::db_ = nullptr;
+
+// A fresh, differently spaced sampling of a shape, placed in the world by T_world_model and
+// optionally cut to what a camera on the model's +x side sees.
+geometry::PointCloud Query(testing::ShapeFn shape, const Eigen::Affine3d& T_world_model, bool partial) {
+  geometry::PointCloud model;
+  shape(0.012, &model.points, &model.normals);
+  geometry::PointCloud out;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    if (partial && !(model.normals[i].x() > 0.5f || model.normals[i].z() > 0.5f)) continue;
+    out.points.push_back((T_world_model * model.points[i].cast<double>()).cast<float>());
+    out.normals.push_back((T_world_model.linear() * model.normals[i].cast<double>()).cast<float>());
+  }
+  return out;
+}
+
+Eigen::Affine3d Placement(double yaw_deg, const Eigen::Vector3d& t) {
+  Eigen::Affine3d T = Eigen::Affine3d::Identity();
+  T.translate(t);
+  T.rotate(Eigen::AngleAxisd(geometry::DegToRad(yaw_deg), Eigen::Vector3d::UnitZ()));
+  return T;
+}
+
+TEST_F(RecognizerTest, RetrievesTheRightModelAmongDistractorsAndPlacesIt) {
+  const Recognizer recognizer(*db_, RecognitionOptions());
+  struct Case {
+    testing::ShapeFn shape;
+    world::Category category;
+  };
+  const Case cases[] = {{&testing::ChairLike, world::Category::kChair},
+                        {&testing::ShelfLike, world::Category::kShelves},
+                        {&testing::SofaLike, world::Category::kSofa}};
+  for (const Case& c : cases) {
+    for (bool partial : {false, true}) {
+      SCOPED_TRACE(std::string(world::CategoryName(c.category)) + (partial ? " partial" : " full"));
+      const Eigen::Affine3d T_world_model = Placement(70.0, {2.0, -1.0, 0.0});
+      const QueryDescription q = recognizer.Describe(Query(c.shape, T_world_model, partial));
+      const auto similar = recognizer.Retrieve(q, RetrievalScope::kFullModels);
+      ASSERT_FALSE(similar.empty());
+      for (const auto& m : similar) fprintf(stderr, "DBG %s: bow %.3f fit %.3f O %.3f rms %.3f yaw %.1f sim %.5f comp %.5f\n", db_->entries()[m.entry].name.c_str(), m.bow_score, m.fit, m.objectness.objectness, m.alignment.trimmed_rms_m, m.alignment.yaw_rad*57.3, m.objectness.similarity_m2, m.objectness.completeness_m2);
+      EXPECT_LE(similar.size(), 5u);
+      const DatabaseEntry& best = db_->entries()[similar[0].entry];
+      EXPECT_EQ(best.category, c.category);
+      EXPECT_EQ(best.kind, EntryKind::kFullModel);
+      // The returned pose puts the model where it is in the world.
+      const Eigen::Affine3d err = similar[0].T_world_model().inverse() * T_world_model;
+      EXPECT_LT(geometry::RadToDeg(Eigen::AngleAxisd(err.linear()).angle()), 3.0);
+      EXPECT_LT(err.translation().norm(), 0.03);
+      // Objectness: high when complete, clearly lower when partial.
+      if (partial) {
+        EXPECT_LT(similar[0].objectness.objectness, 0.93);
+      } else {
+        EXPECT_GT(similar[0].objectness.objectness, 0.95);
+      }
+    }
+  }
+}
+
+TEST_F(RecognizerTest, ScopeSelectsFullModelsOrAllEntries) {
+  const Recognizer recognizer(*db_, RecognitionOptions());
+  // A single table leg: among all entries its best match is a leg component of the table; among
+  // full models only full models come back.
+  geometry::PointCloud leg;
+  testing::BoxSurface({0, 0, 0}, {0.05, 0.05, 0.70}, 0.01, &leg.points, &leg.normals);
+  const QueryDescription q = recognizer.Describe(leg);
+  const auto all = recognizer.Retrieve(q, RetrievalScope::kAllEntries);
+  ASSERT_FALSE(all.empty());
+  EXPECT_EQ(db_->entries()[all[0].entry].kind, EntryKind::kComponent);
+  EXPECT_EQ(db_->entries()[all[0].entry].category, world::Category::kTable);
+  EXPECT_GT(all[0].objectness.objectness, 0.9);
+  for (const auto& m : recognizer.Retrieve(q, RetrievalScope::kFullModels))
+    EXPECT_EQ(db_->entries()[m.entry].kind, EntryKind::kFullModel);
+}
+
+TEST_F(RecognizerTest, DescribeIsDeterministicAndEmptyQueryGivesNothing) {
+  const Recognizer recognizer(*db_, RecognitionOptions());
+  const geometry::PointCloud cloud = Query(&testing::ChairLike, Placement(10, {0, 0, 0}), true);
+  const QueryDescription a = recognizer.Describe(cloud);
+  const QueryDescription b = recognizer.Describe(cloud);
+  EXPECT_EQ(a.keypoints, b.keypoints);
+  ASSERT_EQ(a.bow.size(), b.bow.size());
+  for (std::size_t i = 0; i < a.bow.size(); ++i) EXPECT_EQ(a.bow[i].value, b.bow[i].value);
+  EXPECT_TRUE(recognizer.Retrieve(recognizer.Describe(geometry::PointCloud()), RetrievalScope::kAllEntries).empty());
+}
+
+}  // namespace
+}  // namespace objscan::recognition
