@@ -607,9 +607,14 @@ bool Scanner::Step() {
     for (const auto& T : views) s.TurnInPlaceView(T, &step);
   } else {
     s.RefreshNavigation();
-    s.Analyze(&step);
-    s.graph_cache = &s.segmenter.Components(&s.surface);
-    if (!s.ScanObjectStep(&step)) {
+    const bool object_guidance = s.config.scanner.guidance == "object";
+    if (object_guidance) {
+      s.Analyze(&step);
+      s.graph_cache = &s.segmenter.Components(&s.surface);
+    } else {
+      s.structure = s.structure_detector.Update(&s.surface);
+    }
+    if (!object_guidance || !s.ScanObjectStep(&step)) {
       const Termination t = s.ExploreStep(&step);
       if (t != Termination::kRunning) {
         rec.terminated = t;

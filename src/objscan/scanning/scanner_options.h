@@ -1,10 +1,16 @@
 #pragma once
 // Options of the scanning loop itself (the stages have their own sections).
+#include <string>
+
 #include "objscan/common/config.h"
 
 namespace objscan::scanning {
 
 struct ScannerOptions {
+  // "object": the paper's object-aware guidance (NBO + NBV, frontiers when no object is left);
+  // "frontier": classic frontier exploration without object guidance (baseline); objects are still
+  // recognised from what was seen.
+  std::string guidance = "object";
   int max_steps = 120;                 // terminated "max_steps" beyond this
   double start_camera_height_m = 1.2;  // camera height of look-around views
   double explore_pitch_deg = -25.0;    // pitch of the views taken on arriving at a frontier
@@ -27,6 +33,7 @@ struct ScannerOptions {
 
   template <class V>
   void Visit(V& v) {
+    v("guidance", guidance);
     v("max_steps", max_steps);
     v("start_camera_height_m", start_camera_height_m);
     v("explore_pitch_deg", explore_pitch_deg);
@@ -42,6 +49,7 @@ struct ScannerOptions {
     v("threads", threads);
   }
   void Validate() const {
+    config::Require(guidance == "object" || guidance == "frontier", "scanner.guidance", "must be object or frontier");
     config::Require(max_steps >= 1, "scanner.max_steps", "must be >= 1");
     config::RequireInRange("scanner.start_camera_height_m", start_camera_height_m, 0.3, 1.8);
     config::RequireInRange("scanner.explore_pitch_deg", explore_pitch_deg, -70.0, 30.0);

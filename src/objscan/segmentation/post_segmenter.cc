@@ -226,7 +226,7 @@ PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
 
   // M(c u d) for every adjacent pair: the smoothness weights of eq. (4).
   std::vector<double> edge_weight(edge_ids.size(), 0.0);
-  {
+  if (options_.graph_cuts) {
     std::vector<std::size_t> missing;
     for (std::size_t e = 0; e < edge_ids.size(); ++e) {
       const auto& ca = input.components[static_cast<std::size_t>(index_of[edge_ids[e].first])];
@@ -300,7 +300,10 @@ PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
     const int a = index_of[edge_ids[e].first];
     const int b = index_of[edge_ids[e].second];
     const int la = n > 0 ? solution.labels[static_cast<std::size_t>(a)] : 0;
-    if (la != none_label && la == solution.labels[static_cast<std::size_t>(b)]) groups.Union(a, b);
+    // Without graph cuts (the pre-segmentation baseline) every component stays an object of its own.
+    if (options_.graph_cuts && la != none_label && la == solution.labels[static_cast<std::size_t>(b)]) {
+      groups.Union(a, b);
+    }
   }
   std::map<int, std::vector<int>> members_of_root;
   for (int i = 0; i < n; ++i) members_of_root[groups.Find(i)].push_back(i);

@@ -41,6 +41,9 @@ struct PostSegmenterOptions {
   // Split connected same-label groups into instances when every part has a higher objectness than the
   // whole. false = the paper's behaviour (one object per connected same-label group).
   bool split_instances = true;
+  // false: the pre-segmentation baseline (Tateno et al.): each component is recognized on its own
+  // (its best M(c)), no smoothness term, no merging.
+  bool graph_cuts = true;
   AlphaExpansionOptions alpha_expansion;
 
   template <class V>
@@ -49,6 +52,7 @@ struct PostSegmenterOptions {
     v("complete_objectness", complete_objectness);
     v("noise_objectness", noise_objectness);
     v("split_instances", split_instances);
+    v("graph_cuts", graph_cuts);
     v("alpha_expansion", alpha_expansion);
   }
   void Validate() const;
