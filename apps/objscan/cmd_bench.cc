@@ -1,26 +1,270 @@
-// `objscan bench`: Run a benchmark suite of scenes x methods and write a report
-// The command line is fixed by DESIGN.md; the work arrives with issue #8.
-#include <cstdio>
+// `objscan bench`: run a benchmark suite of scenes x methods (each one `objscan run` in its own
+// process, --jobs at a time, resumable, shardable) and write the report (see `objscan report`).
+#include <unistd.h>
 
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_util.h"
 #include "commands.h"
+#include "objscan/common/error.h"
+#include "objscan/eval/benchmark.h"
+#include "objscan/eval/report.h"
+#include "objscan/io/scene_spec.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/scanning/system_config.h"
 
 namespace objscan::app {
 
+std::string DefaultDatabasePath(bool verbose);  // cmd_run.cc
+
+namespace {
+namespace fs = std::filesystem;
+
+struct BenchArgs {
+  std::string suite;
+  std::string db;
+  std::string out = "objscan-bench";
+  int jobs = 0;
+  std::string methods;
+  std::string shard = "1/1";
+  int seeds = 2;
+  std::vector<std::string> sets;
+  std::string model_path;
+  bool db_from_worlds = false;
+  std::uint64_t seed = 1;
+};
+
+// ../shared/data beside the project ($OBJSCAN_SHARED_DATA wins); the project root is the parent of
+// the config folder, else the working directory.
+std::string SharedDataDir() {
+  if (const char* d = std::getenv("OBJSCAN_SHARED_DATA")) return d;
+  const fs::path from_config = fs::path(scanning::ConfigDir()).parent_path().parent_path() / "shared" / "data";
+  if (fs::is_directory(from_config)) return from_config.lexically_normal().string();
+  return fs::absolute("../shared/data").lexically_normal().string();
+}
+
+std::string SelfExecutable() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("/proc/self/exe") : p.string();
+}
+
+std::string Duration(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600) {
+    std::snprintf(buf, sizeof(buf), "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  } else {
+    std::snprintf(buf, sizeof(buf), "%ldm%02lds", s / 60, s % 60);
+  }
+  return buf;
+}
+
+std::string JoinPaths(const std::string& a, const std::string& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return a + ":" + b;
+}
+
+// Builds `path` with `build` unless it exists (an interrupted build leaves nothing: Save is atomic).
+template <class BuildFn>
+void EnsureDatabase(const std::string& path, const std::string& what, BuildFn build) {
+  if (fs::exists(path)) return;
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
+  if (ec) throw InputError(fs::path(path).parent_path().string() + ": cannot create: " + ec.message());
+  std::fprintf(stderr, "objscan bench: building %s -> %s\n", what.c_str(), path.c_str());
+  const auto start = std::chrono::steady_clock::now();
+  const recognition::ModelDatabase db = build();
+  FinishProgress();
+  db.Save(path);
+  std::fprintf(stderr, "objscan bench: %zu models, %zu entries in %s\n", db.models().size(), db.entries().size(),
+               Duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()).c_str());
+}
+
+int RunBench(const BenchArgs& a) {
+  using Clock = std::chrono::steady_clock;
+  const auto bench_start = Clock::now();
+  eval::SuiteOptions suite_options;
+  suite_options.seeds_per_category = a.seeds;
+  suite_options.shared_data_dir = SharedDataDir();
+  if (a.seeds < 1) throw InputError("--seeds must be at least 1");
+  const eval::Suite suite = eval::ResolveSuite(a.suite, suite_options);
+  const std::vector<eval::BenchMethod> methods = eval::SelectBenchMethods(a.methods);
+  const eval::Shard shard = eval::ParseShard(a.shard);
+  if (a.db_from_worlds && suite.name == "procedural") {
+    throw InputError("--db-from-worlds needs a suite of .world files (e.g. oasc-dev), not procedural");
+  }
+  if (a.db_from_worlds && !a.db.empty()) throw InputError("--db and --db-from-worlds exclude each other");
+  const std::string model_path = JoinPaths(a.model_path, suite.model_path);
+  // The configuration must be valid before any run starts (each run checks it again).
+  std::vector<std::string> check_sets = a.sets;
+  if (!model_path.empty()) check_sets.push_back("scene.model_path=" + model_path);
+  const scanning::SystemConfig config = scanning::LoadSystemConfig("", check_sets);
+
+  const std::string out = fs::absolute(a.out).lexically_normal().string();
+  const std::vector<eval::BenchJob> jobs = eval::ShardJobs(eval::MakeJobs(suite.scenes, methods, out), shard);
+  const std::vector<eval::BenchJob> pending = eval::PendingJobs(jobs);
+  std::fprintf(stderr, "objscan bench: suite %s, %zu scenes x %zu methods; shard %d/%d: %zu runs, %zu done, %zu to run\n",
+               suite.name.c_str(), suite.scenes.size(), methods.size(), shard.index, shard.count, jobs.size(),
+               jobs.size() - pending.size(), pending.size());
+
+  // Databases of the pending runs.
+  std::map<std::string, std::string> database_of_run;  // run_dir -> --db
+  const fs::path db_dir = fs::path(out) / "db";
+  if (a.db_from_worlds) {
+    std::set<std::string> need;  // database files to build
+    for (const auto& job : pending) {
+      const std::string path = (db_dir / "worlds" / (job.scene.id + (job.method.database_without_parts ? "-no-parts" : "") + ".db")).string();
+      database_of_run[job.run_dir] = path;
+      if (!fs::exists(path)) need.insert(path);
+    }
+    if (!need.empty()) {
+      std::fprintf(stderr, "objscan bench: loading %zu worlds for the model-disjoint databases\n", suite.scenes.size());
+      std::vector<eval::WorldModels> worlds;
+      for (const auto& scene : suite.scenes) worlds.push_back({scene.spec, io::LoadScene(scene.spec, config.scene)});
+      for (std::size_t i = 0; i < suite.scenes.size(); ++i) {
+        for (bool no_parts : {false, true}) {
+          const std::string path =
+              (db_dir / "worlds" / (suite.scenes[i].id + (no_parts ? "-no-parts" : "") + ".db")).string();
+          if (!need.count(path)) continue;
+          EnsureDatabase(path, "the model-disjoint database of " + suite.scenes[i].id, [&] {
+            recognition::DatabaseBuildOptions options;
+            options.include_components = !no_parts;
+            options.include_pairs = !no_parts;
+            const auto sources = eval::ModelDisjointSources(worlds, i);
+            if (sources.empty()) throw InputError(suite.scenes[i].spec + ": no model left for a model-disjoint database");
+            return recognition::BuildDatabase(sources, options, TerminalProgress("db " + suite.scenes[i].id));
+          });
+        }
+      }
+    }
+  } else if (!pending.empty()) {
+    const std::string base = a.db.empty() ? DefaultDatabasePath(true) : a.db;
+    const std::string no_parts = (db_dir / "no-parts.db").string();
+    for (const auto& job : pending) {
+      database_of_run[job.run_dir] = job.method.database_without_parts ? no_parts : base;
+      if (job.method.database_without_parts) {
+        EnsureDatabase(no_parts, "the database without component and pair entries", [&] {
+          const recognition::ModelDatabase db = recognition::ModelDatabase::Load(base);
+          return eval::BuildDatabaseWithoutParts(db, TerminalProgress("db no-parts"));
+        });
+      }
+    }
+  }
+
+  // The runs.
+  const std::string self = SelfExecutable();
+  std::vector<eval::ChildCommand> commands;
+  for (const auto& job : pending) {
+    eval::RunCommandOptions options;
+    options.database = database_of_run[job.run_dir];
+    options.model_path = model_path;
+    options.sets = a.sets;
+    options.seed = a.seed;
+    eval::ChildCommand c;
+    c.argv = {self};
+    for (auto& arg : eval::RunCommandArgs(job, options)) c.argv.push_back(std::move(arg));
+    c.dir = job.run_dir;
+    c.labels = {{"scene", job.scene.spec}, {"scene_id", job.scene.id}, {"method", job.method.name}};
+    commands.push_back(std::move(c));
+  }
+  const int parallel = a.jobs > 0 ? a.jobs : std::max(1u, std::thread::hardware_concurrency());
+  const auto runs_start = Clock::now();
+  std::size_t finished = 0, failed = 0;
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  auto outcomes = eval::RunChildProcesses(
+      commands, parallel, nullptr, [&](const eval::ChildOutcome& o) {
+        ++finished;
+        if (!o.ok) ++failed;
+        const double elapsed = std::chrono::duration<double>(Clock::now() - runs_start).count();
+        const double eta = elapsed / finished * (commands.size() - finished);
+        const auto& job = pending[o.index];
+        const int width = 24, filled = static_cast<int>(width * finished / std::max<std::size_t>(1, commands.size()));
+        std::string bar = "[" + std::string(filled, '#') + std::string(width - filled, '.') + "]";
+        std::fprintf(stderr, "%s%s %zu/%zu %-6s %s/%s %.0fs; elapsed %s, eta %s%s%s", tty ? "\r\033[K" : "", bar.c_str(),
+                     finished, commands.size(), o.ok ? "ok" : "FAILED", job.scene.id.c_str(), job.method.name.c_str(),
+                     o.seconds, Duration(elapsed).c_str(), Duration(eta).c_str(),
+                     failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "", tty ? "" : "\n");
+        if (!o.ok && tty) std::fputc('\n', stderr);
+        std::fflush(stderr);
+      });
+  if (tty && !commands.empty()) std::fputc('\n', stderr);
+  const double runs_seconds = std::chrono::duration<double>(Clock::now() - runs_start).count();
+
+  // bench.json: what this (shard of the) bench ran.
+  nlohmann::ordered_json info;
+  info["suite"] = suite.name;
+  info["scenes"] = suite.scenes.size();
+  nlohmann::ordered_json method_names = nlohmann::ordered_json::array();
+  for (const auto& m : methods) method_names.push_back(m.name);
+  info["methods"] = method_names;
+  info["sets"] = a.sets;
+  info["db"] = a.db_from_worlds ? std::string("from-worlds") : (a.db.empty() ? std::string("default") : a.db);
+  info["shard"] = a.shard;
+  info["jobs"] = parallel;
+  info["runs_in_shard"] = jobs.size();
+  info["runs_started"] = commands.size();
+  info["runs_failed"] = failed;
+  info["runs_wall_s"] = runs_seconds;
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  const std::string info_name = shard.count > 1 ? "bench-shard-" + std::to_string(shard.index) + ".json" : "bench.json";
+  WriteFileAtomic((fs::path(out) / info_name).string(), info.dump(2) + "\n");
+
+  // The report over everything in OUT (other shards sharing OUT included).
+  const eval::Report report = eval::BuildReport(eval::CollectRuns({out}));
+  const std::string report_dir = (fs::path(out) / "report").string();
+  eval::WriteReport(report, report_dir);
+  const double total_seconds = std::chrono::duration<double>(Clock::now() - bench_start).count();
+  nlohmann::ordered_json j;
+  j["out"] = out;
+  j["report"] = report_dir + "/results.md";
+  j["runs_in_shard"] = jobs.size();
+  j["runs_started"] = commands.size();
+  j["runs_failed"] = failed;
+  j["runs_complete_in_report"] = report.complete_runs;
+  j["runs_failed_in_report"] = report.failed_runs;
+  j["wall_s"] = total_seconds;
+  std::printf("%s\n", j.dump(2).c_str());
+  return failed > 0 ? 1 : 0;
+}
+
+}  // namespace
+
 void AddBenchCommand(CLI::App& root, RunFn* run) {
+  auto args = std::make_shared<BenchArgs>();
   auto* cmd = root.add_subcommand("bench", "Run a benchmark suite of scenes x methods and write a report");
-  cmd->add_option("--suite", "suite NAME (procedural, oasc-dev) or a DIR of .world files")->required();
-  cmd->add_option("--db", "model database file");
-  cmd->add_option("--out", "output folder");
-  cmd->add_option("--jobs", "parallel processes");
-  cmd->add_option("--methods", "comma-separated methods");
-  cmd->add_option("--shard", "run slice i/n");
-  cmd->add_option("--set", "override a config key: key=value (repeatable)");
-  cmd->callback([run] {
-    *run = [] {
-      std::fprintf(stderr, "objscan bench: not available in this build yet (issue #8)\n");
-      return 3;
-    };
-  });
+  cmd->footer(
+      "Methods: ours, no-objectness, no-size, no-distance, no-orientation (NBO ablations), frontier (no object\n"
+      "guidance), preseg-only (no graph cuts), db-no-parts (database without component/pair entries).\n"
+      "Runs go to OUT/runs/<scene>/<method>/ (finished runs are skipped on a re-run; a failed run keeps its\n"
+      "stderr.txt and failed.json); the report to OUT/report/. Exit status 1 when a run failed.");
+  cmd->add_option("--suite", args->suite, "suite NAME (procedural, oasc-dev) or a DIR searched for .world files")
+      ->required();
+  cmd->add_option("--db", args->db, "model database file (default: the built-in procedural database)");
+  cmd->add_option("--out", args->out, "output folder")->capture_default_str();
+  cmd->add_option("--jobs", args->jobs, "parallel runs (0 = number of cores)")->capture_default_str();
+  cmd->add_option("--methods", args->methods, "comma-separated methods (default: all)");
+  cmd->add_option("--shard", args->shard, "run only slice i of n (1-based) of the sorted (scene, method) list")
+      ->capture_default_str();
+  cmd->add_option("--seeds", args->seeds, "procedural suite: scenes per category")->capture_default_str();
+  cmd->add_option("--set", args->sets, "override a config key of every run: key=value (repeatable)");
+  cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
+  cmd->add_option("--seed", args->seed, "random seed of every run")->capture_default_str();
+  cmd->add_flag("--db-from-worlds", args->db_from_worlds,
+                "per test world, a database of the other worlds' models without any model id of the test world");
+  cmd->callback([run, args] { *run = [args] { return RunBench(*args); }; });
 }
 
 }  // namespace objscan::app

@@ -1,20 +1,46 @@
-// `objscan report`: Rebuild tables and plots from finished runs or bench shards
-// The command line is fixed by DESIGN.md; the work arrives with issue #8.
+// `objscan report DIR...`: rebuild the tables and plots from finished runs or bench shards
+// (results.md, results.json, SVG + PNG plots in FIRST_DIR/report/ or --out).
 #include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "commands.h"
+#include "objscan/eval/report.h"
 
 namespace objscan::app {
+namespace {
+
+struct ReportArgs {
+  std::vector<std::string> dirs;
+  std::string out;
+};
+
+int RunReport(const ReportArgs& a) {
+  const eval::Report report = eval::BuildReport(eval::CollectRuns(a.dirs));
+  const std::string out = a.out.empty() ? (std::filesystem::path(a.dirs.front()) / "report").string() : a.out;
+  const std::vector<std::string> files = eval::WriteReport(report, out);
+  nlohmann::ordered_json j;
+  j["out"] = out;
+  j["runs_complete"] = report.complete_runs;
+  j["runs_failed"] = report.failed_runs;
+  j["methods"] = report.methods;
+  j["scene_categories"] = report.scene_categories;
+  j["files"] = files;
+  std::printf("%s\n", j.dump(2).c_str());
+  return 0;
+}
+
+}  // namespace
 
 void AddReportCommand(CLI::App& root, RunFn* run) {
+  auto args = std::make_shared<ReportArgs>();
   auto* cmd = root.add_subcommand("report", "Rebuild tables and plots from finished runs or bench shards");
-  cmd->add_option("dirs", "run or bench folders")->required();
-  cmd->callback([run] {
-    *run = [] {
-      std::fprintf(stderr, "objscan report: not available in this build yet (issue #8)\n");
-      return 3;
-    };
-  });
+  cmd->add_option("dirs", args->dirs, "run or bench folders (shards are merged)")->required();
+  cmd->add_option("--out", args->out, "report folder (default: FIRST_DIR/report)");
+  cmd->callback([run, args] { *run = [args] { return RunReport(*args); }; });
 }
 
 }  // namespace objscan::app

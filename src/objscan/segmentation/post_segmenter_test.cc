@@ -156,6 +156,19 @@ TEST(PostSegmenterTest, ChairPartsBecomeOneCompleteChair) {
   }
 }
 
+TEST(PostSegmenterTest, WithoutGraphCutsEveryComponentStaysAlone) {
+  // The pre-segmentation baseline: no pair queries, each component labelled by its own best match.
+  FakeMatcher matcher = ChairMatcher();
+  PostSegmenterOptions options;
+  options.graph_cuts = false;
+  PostSegmenter segmenter(options, &matcher);
+  const PostSegmentation seg = segmenter.Update(MakeInput({1, 2, 3}, {{1, 2}, {1, 3}}));
+  ASSERT_EQ(seg.objects.size(), 3u);
+  EXPECT_EQ(seg.stats.pair_queries, 0);
+  EXPECT_EQ(seg.category_of_component[0], Category::kTable);  // the seat alone looks like a table top
+  for (const auto& o : seg.objects) EXPECT_EQ(o.component_ids.size(), 1u);
+}
+
 TEST(PostSegmenterTest, WithoutPairEvidenceTheSeatIsLabelledTable) {
   // The smoothness term is what pulls the seat over: with weak pair objectness the seat keeps its
   // own best label, so the chair falls apart into a table top and a chair remainder.
@@ -426,7 +439,7 @@ TEST(PostSegmenterTest, OptionsListEveryField) {
   std::vector<std::string> keys;
   for (const auto& kv : values) keys.push_back(kv.first);
   EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
-                                            "split_instances", "alpha_expansion.max_sweeps",
+                                            "split_instances", "graph_cuts", "alpha_expansion.max_sweeps",
                                             "alpha_expansion.min_improvement"}));
 }
 

@@ -1,0 +1,127 @@
+#pragma once
+// The report of `objscan bench` / `objscan report`: reads the run.json of finished runs (from one
+// bench folder or several shards), aggregates them like the paper's Results section (Tables 1-3,
+// Figs. 10, 11, 13, 14) with the paper's published figures beside ours, and writes results.md,
+// results.json and SVG + PNG plots. results.json depends only on the runs found (sorted by scene and
+// method), so shards merged give the same file as one bench over the whole suite.
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace objscan::eval {
+
+// One view of a run's coverage curve.
+struct CoveragePoint {
+  int view = 0;           // 1-based
+  double travel_m = 0.0;  // robot travel when the view was taken
+  double rate = 0.0, quality = 0.0;
+  bool nbo_switch = false;  // first view after the robot switched to a next best object
+};
+
+struct RunTiming {
+  double total = 0, sense = 0, fuse = 0, segment = 0, recognize = 0, nbo = 0, nbv = 0, navigate_sim = 0;
+};
+
+struct CategoryCounts {
+  int ground_truth = 0, outputs = 0, true_positives = 0;
+};
+
+// One run (a run.json, or a failed.json without a run.json).
+struct RunSummary {
+  std::string scene_id, method, scene_spec, scene_category;
+  bool failed = false;
+  int exit_code = 0;
+  std::string terminated;
+  bool has_metrics = false;
+  double recall = 0, precision = 0, recall_floor = 0, precision_floor = 0;
+  int ground_truth_objects = 0, ground_truth_floor_objects = 0, output_objects = 0, true_positives = 0;
+  double rand_index = 0, rand_index_preseg = 0, preseg_purity = 0;
+  double coverage_rate = 0, coverage_quality = 0, travel_m = 0;
+  int views = 0, nbo_count = 0, steps = 0;
+  double nbv_per_object = 0;
+  std::map<std::string, CategoryCounts> per_category;
+  std::vector<CoveragePoint> coverage;
+  RunTiming timing_s;
+};
+
+// Parses run.json text. `scene_id` and `method` name the run (from its folder). Throws InputError
+// naming `source` when the text is not a run.json.
+RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, const std::string& method,
+                        const std::string& source);
+
+// Every run under the folders (searched recursively; report/ folders skipped). A run folder
+// .../runs/<scene-id>/<method>/ names its scene and method; any other run.json is method "ours" with
+// the folder name as scene id. The same (scene, method) found twice counts once (a complete run wins
+// over a failed one, then the first path in sorted order). Sorted by (scene id, method). Throws
+// InputError naming a folder that does not exist or a run.json that cannot be read.
+std::vector<RunSummary> CollectRuns(const std::vector<std::string>& dirs);
+
+// Paper figures (Tables 1-3 of the paper, hard-coded).
+struct PaperSceneRow {
+  const char* category;
+  int scenes, objects_per_scene;
+  double recall_pct, precision_pct, recall_floor_pct, precision_floor_pct;
+};
+struct PaperObjectRow {
+  const char* category;
+  int objects;
+  double recall_pct, precision_pct;
+};
+struct PaperTimingRow {
+  const char* category;
+  double total_min, navigate_min, segment_min, nbo_min, nbv_min;
+};
+const std::vector<PaperSceneRow>& PaperTable1();
+const std::vector<PaperObjectRow>& PaperTable2();
+const std::vector<PaperTimingRow>& PaperTable3();
+
+// Aggregates over the complete runs of one method in one scene category (or all: "all").
+struct SceneCategoryStats {
+  std::string category;
+  int scenes = 0;        // complete runs
+  int failed = 0;
+  double objects_per_scene = 0;  // mean ground-truth objects
+  double recall = 0, precision = 0, recall_floor = 0, precision_floor = 0;  // means over scenes
+  double rand_index = 0, rand_index_preseg = 0;
+  double coverage_rate = 0, coverage_quality = 0, travel_m = 0, views = 0, nbo_count = 0;
+  RunTiming timing_s;  // means
+};
+
+struct ObjectCategoryStats {
+  std::string category;
+  CategoryCounts counts;  // summed over scenes
+  double recall = 0, precision = 0;  // tp / ground truth, tp / outputs (0 when the divisor is 0)
+};
+
+// A mean curve over the runs of a group: y at each x (runs that ended earlier hold their last value).
+struct Curve {
+  std::string label;
+  std::vector<double> x, y;
+};
+
+struct Report {
+  std::vector<std::string> methods;           // in report order
+  std::vector<std::string> scene_categories;  // present, in the paper's order
+  std::map<std::string, std::vector<SceneCategoryStats>> by_method;  // per scene category, then "all"
+  std::vector<ObjectCategoryStats> object_categories;  // method "ours"
+  std::vector<RunSummary> runs;
+  int complete_runs = 0, failed_runs = 0;
+};
+
+Report BuildReport(std::vector<RunSummary> runs);
+
+// Mean curves: coverage rate against travel distance (Fig. 13), sampled at `samples` points from 0
+// to the longest travel of the runs; coverage (rate or quality) against views.
+Curve MeanCoverageOverTravel(const std::vector<const RunSummary*>& runs, int samples, bool quality);
+Curve MeanCoverageOverViews(const std::vector<const RunSummary*>& runs, bool quality);
+// Coverage quality after each completed object (x = number of NBOs so far).
+Curve MeanQualityOverNbos(const std::vector<const RunSummary*>& runs);
+
+std::string ReportJson(const Report& report);
+std::string ReportMarkdown(const Report& report);
+// Writes results.md, results.json and the plots (SVG + PNG) into `out_dir` (created when missing).
+// Returns the files written (relative to out_dir).
+std::vector<std::string> WriteReport(const Report& report, const std::string& out_dir);
+
+}  // namespace objscan::eval

@@ -1,0 +1,326 @@
+#include "objscan/eval/report.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "objscan/common/error.h"
+#include "objscan/eval/plot.h"
+
+namespace objscan::eval {
+namespace {
+namespace fs = std::filesystem;
+
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("objscan_report_test_" + std::to_string(getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+void WriteText(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A hand-made run.json in the format `objscan run` writes.
+struct Fixture {
+  std::string spec = "procedural:bedroom:1";
+  double recall = 0.5, precision = 0.25, recall_floor = 0.75, precision_floor = 0.5;
+  int gt = 4, gt_floor = 2, outputs = 8, tp = 2;
+  double rand_index = 0.8, rand_index_preseg = 0.6;
+  // Steps: action, views, travel.
+  std::vector<std::tuple<std::string, int, double>> steps = {{"frontier", 2, 0.0}, {"nbo", 1, 1.0}, {"nbv", 1, 0.5}};
+  std::vector<std::pair<double, double>> coverage = {{0.1, 0.05}, {0.2, 0.1}, {0.4, 0.3}, {0.5, 0.4}};
+  nlohmann::json per_category = {{"chair", {{"ground_truth", 3}, {"outputs", 5}, {"true_positives", 2}}},
+                                 {"bed", {{"ground_truth", 1}, {"outputs", 3}, {"true_positives", 0}}}};
+  double total_s = 10.0, navigate_s = 40.0;
+
+  std::string Json() const {
+    nlohmann::json j;
+    j["scene"] = spec;
+    j["seed"] = 1;
+    j["terminated"] = "done";
+    nlohmann::json s = nlohmann::json::array();
+    int index = 0;
+    double travel = 0.0;
+    for (const auto& [action, views, travel_m] : steps) {
+      s.push_back({{"index", index++}, {"action", action}, {"ooi", -1}, {"views", views}, {"travel_m", travel_m},
+                   {"timing_ms", {{"sense", 1.0}}}});
+      travel += travel_m;
+    }
+    j["steps"] = s;
+    j["objects"] = nlohmann::json::array();
+    nlohmann::json cov = nlohmann::json::array();
+    for (const auto& [r, q] : coverage) cov.push_back({r, q});
+    int views = 0;
+    for (const auto& st : steps) views += std::get<1>(st);
+    j["metrics"] = {{"recall", recall},
+                    {"precision", precision},
+                    {"recall_floor", recall_floor},
+                    {"precision_floor", precision_floor},
+                    {"ground_truth_objects", gt},
+                    {"ground_truth_floor_objects", gt_floor},
+                    {"output_objects", outputs},
+                    {"true_positives", tp},
+                    {"rand_index", rand_index},
+                    {"rand_index_preseg", rand_index_preseg},
+                    {"preseg_purity", 1.0},
+                    {"coverage_rate", coverage.empty() ? 0.0 : coverage.back().first},
+                    {"coverage_quality", coverage.empty() ? 0.0 : coverage.back().second},
+                    {"travel_m", travel},
+                    {"views", views},
+                    {"nbo_count", 1},
+                    {"nbv_per_object", 1.0},
+                    {"per_category", per_category},
+                    {"coverage_per_view", cov}};
+    j["timing_s"] = {{"total", total_s}, {"sense", 1.0},   {"fuse", 1.0}, {"segment", 2.0}, {"recognize", 5.0},
+                     {"nbo", 0.5},       {"nbv", 0.5},     {"navigate_sim", navigate_s}};
+    return j.dump(2);
+  }
+};
+
+TEST(ParseRunJsonTest, ReadsMetricsTimingAndCoverageWithTravelAndNboSwitches) {
+  Fixture f;
+  const RunSummary r = ParseRunJson(f.Json(), "scene-a", "ours", "fixture");
+  EXPECT_EQ(r.scene_id, "scene-a");
+  EXPECT_EQ(r.method, "ours");
+  EXPECT_EQ(r.scene_category, "bedroom");
+  EXPECT_EQ(r.terminated, "done");
+  EXPECT_TRUE(r.has_metrics);
+  EXPECT_DOUBLE_EQ(r.recall, 0.5);
+  EXPECT_EQ(r.ground_truth_objects, 4);
+  EXPECT_EQ(r.steps, 3);
+  EXPECT_EQ(r.views, 4);
+  EXPECT_DOUBLE_EQ(r.travel_m, 1.5);
+  EXPECT_EQ(r.per_category.at("chair").outputs, 5);
+  EXPECT_DOUBLE_EQ(r.timing_s.navigate_sim, 40.0);
+  ASSERT_EQ(r.coverage.size(), 4u);
+  // Views 1-2 are the look-around at 0 m; view 3 starts the NBO after 1 m; view 4 is its NBV.
+  EXPECT_DOUBLE_EQ(r.coverage[1].travel_m, 0.0);
+  EXPECT_FALSE(r.coverage[1].nbo_switch);
+  EXPECT_DOUBLE_EQ(r.coverage[2].travel_m, 1.0);
+  EXPECT_TRUE(r.coverage[2].nbo_switch);
+  EXPECT_DOUBLE_EQ(r.coverage[3].travel_m, 1.5);
+  EXPECT_FALSE(r.coverage[3].nbo_switch);
+  EXPECT_DOUBLE_EQ(r.coverage[3].quality, 0.4);
+  EXPECT_THROW(ParseRunJson("{\"scene\": 1}", "x", "ours", "bad.json"), InputError);
+}
+
+TEST(ReportTest, MeansPerSceneCategoryAndSumsPerObjectCategory) {
+  Fixture a, b, c;
+  b.spec = "procedural:bedroom:2";
+  b.recall = 1.0;
+  b.precision = 0.75;
+  b.gt = 6;
+  b.total_s = 30.0;
+  b.per_category = {{"chair", {{"ground_truth", 2}, {"outputs", 2}, {"true_positives", 2}}}};
+  c.spec = "procedural:office:1";
+  c.recall = 0.2;
+  std::vector<RunSummary> runs = {ParseRunJson(a.Json(), "bed-1", "ours", "a"),
+                                  ParseRunJson(b.Json(), "bed-2", "ours", "b"),
+                                  ParseRunJson(c.Json(), "off-1", "ours", "c"),
+                                  ParseRunJson(c.Json(), "off-1", "frontier", "c")};
+  RunSummary failed;
+  failed.scene_id = "bed-3";
+  failed.method = "ours";
+  failed.scene_category = "bedroom";
+  failed.failed = true;
+  runs.push_back(failed);
+  const Report report = BuildReport(runs);
+  EXPECT_EQ(report.complete_runs, 4);
+  EXPECT_EQ(report.failed_runs, 1);
+  EXPECT_EQ(report.methods, (std::vector<std::string>{"ours", "frontier"}));
+  EXPECT_EQ(report.scene_categories, (std::vector<std::string>{"bedroom", "office"}));
+  const auto& ours = report.by_method.at("ours");
+  ASSERT_EQ(ours.size(), 3u);  // bedroom, office, all
+  EXPECT_EQ(ours[0].category, "bedroom");
+  EXPECT_EQ(ours[0].scenes, 2);
+  EXPECT_EQ(ours[0].failed, 1);
+  EXPECT_DOUBLE_EQ(ours[0].recall, 0.75);
+  EXPECT_DOUBLE_EQ(ours[0].precision, 0.5);
+  EXPECT_DOUBLE_EQ(ours[0].objects_per_scene, 5.0);
+  EXPECT_DOUBLE_EQ(ours[0].timing_s.total, 20.0);
+  EXPECT_EQ(ours[2].category, "all");
+  EXPECT_EQ(ours[2].scenes, 3);
+  EXPECT_NEAR(ours[2].recall, (0.5 + 1.0 + 0.2) / 3, 1e-12);
+  // Object categories of "ours": chair 3 + 2 + 3 ground truth, 5 + 2 + 5 outputs, 2 + 2 + 2 TP.
+  ASSERT_EQ(report.object_categories.size(), 2u);
+  EXPECT_EQ(report.object_categories[0].category, "bed");  // paper order: bed before chair
+  const ObjectCategoryStats& chair = report.object_categories[1];
+  EXPECT_EQ(chair.counts.ground_truth, 8);
+  EXPECT_EQ(chair.counts.outputs, 12);
+  EXPECT_EQ(chair.counts.true_positives, 6);
+  EXPECT_DOUBLE_EQ(chair.recall, 0.75);
+  EXPECT_DOUBLE_EQ(chair.precision, 0.5);
+  EXPECT_DOUBLE_EQ(report.object_categories[0].recall, 0.0);
+  // The markdown carries the paper's Table 1 figures beside ours.
+  const std::string md = ReportMarkdown(report);
+  EXPECT_NE(md.find("64.22%"), std::string::npos);
+  EXPECT_NE(md.find("75.00%"), std::string::npos);
+}
+
+TEST(ReportTest, CurvesHoldTheLastValueOfShorterRuns) {
+  Fixture a, b;
+  b.steps = {{"frontier", 1, 0.0}, {"nbo", 1, 2.0}};
+  b.coverage = {{0.3, 0.2}, {0.7, 0.6}};
+  const RunSummary ra = ParseRunJson(a.Json(), "a", "ours", "a");
+  const RunSummary rb = ParseRunJson(b.Json(), "b", "ours", "b");
+  const Curve views = MeanCoverageOverViews({&ra, &rb}, false);
+  ASSERT_EQ(views.x.size(), 4u);
+  EXPECT_DOUBLE_EQ(views.y[0], (0.1 + 0.3) / 2);
+  EXPECT_DOUBLE_EQ(views.y[3], (0.5 + 0.7) / 2);
+  // Travel 0..2 m in 5 samples: a reaches 1 m (0.4) and 1.5 m (0.5); b jumps at 2 m.
+  const Curve travel = MeanCoverageOverTravel({&ra, &rb}, 5, false);
+  ASSERT_EQ(travel.x.size(), 5u);
+  EXPECT_DOUBLE_EQ(travel.x[4], 2.0);
+  EXPECT_DOUBLE_EQ(travel.y[0], (0.2 + 0.3) / 2);
+  EXPECT_DOUBLE_EQ(travel.y[2], (0.4 + 0.3) / 2);
+  EXPECT_DOUBLE_EQ(travel.y[3], (0.5 + 0.3) / 2);
+  EXPECT_DOUBLE_EQ(travel.y[4], (0.5 + 0.7) / 2);
+  // Quality before the first NBO and at the end: a (0.1, 0.4), b (0.2, 0.6).
+  const Curve nbos = MeanQualityOverNbos({&ra, &rb});
+  ASSERT_EQ(nbos.x.size(), 2u);
+  EXPECT_DOUBLE_EQ(nbos.y[0], (0.1 + 0.2) / 2);
+  EXPECT_DOUBLE_EQ(nbos.y[1], (0.4 + 0.6) / 2);
+}
+
+// Six runs of two methods over three scenes.
+std::vector<std::pair<fs::path, std::string>> FixtureRuns() {
+  std::vector<std::pair<fs::path, std::string>> runs;
+  int k = 0;
+  for (const char* spec : {"procedural:bedroom:1", "procedural:kitchen:1", "procedural:office:2"}) {
+    for (const char* method : {"ours", "preseg-only"}) {
+      Fixture f;
+      f.spec = spec;
+      f.recall = 0.1 * ++k;
+      f.rand_index = 0.5 + 0.03 * k;
+      f.total_s = 3.0 * k;
+      const std::string id = std::string(spec).substr(11);
+      runs.push_back({fs::path("runs") / id / method, f.Json()});
+    }
+  }
+  return runs;
+}
+
+TEST(ReportTest, ShardsMergeToTheSameReportAsOneBench) {
+  TempDir dir;
+  const auto runs = FixtureRuns();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    WriteText(dir.path() / "whole" / runs[i].first / "run.json", runs[i].second);
+    WriteText(dir.path() / (i % 2 ? "shard2" : "shard1") / runs[i].first / "run.json", runs[i].second);
+  }
+  // Leftovers that must not change anything: a failure record superseded by a complete run, and a
+  // report folder from an earlier report.
+  WriteText(dir.path() / "shard2" / runs[0].first / "failed.json", R"({"exit_code": 1})");
+  WriteText(dir.path() / "whole" / "report" / "runs" / "x" / "ours" / "run.json", "garbage");
+  const std::string whole = ReportJson(BuildReport(CollectRuns({(dir.path() / "whole").string()})));
+  const std::string merged = ReportJson(
+      BuildReport(CollectRuns({(dir.path() / "shard1").string(), (dir.path() / "shard2").string()})));
+  EXPECT_EQ(whole, merged);
+  const nlohmann::json j = nlohmann::json::parse(whole);
+  EXPECT_EQ(j["runs"]["complete"], 6);
+  EXPECT_EQ(j["runs"]["failed"], 0);
+  // One shard alone is a different report.
+  const std::string one = ReportJson(BuildReport(CollectRuns({(dir.path() / "shard1").string()})));
+  EXPECT_NE(whole, one);
+}
+
+TEST(ReportTest, FailedRunsAreReported) {
+  TempDir dir;
+  Fixture f;
+  WriteText(dir.path() / "runs" / "bedroom-1" / "ours" / "run.json", f.Json());
+  WriteText(dir.path() / "runs" / "bedroom-2" / "ours" / "failed.json",
+            R"({"scene": "procedural:bedroom:2", "exit_code": 2})");
+  const Report report = BuildReport(CollectRuns({dir.path().string()}));
+  ASSERT_EQ(report.runs.size(), 2u);
+  EXPECT_TRUE(report.runs[1].failed);
+  EXPECT_EQ(report.runs[1].exit_code, 2);
+  EXPECT_EQ(report.runs[1].scene_category, "bedroom");
+  EXPECT_EQ(report.by_method.at("ours")[0].failed, 1);
+  EXPECT_EQ(report.by_method.at("ours")[0].scenes, 1);
+  EXPECT_THROW(CollectRuns({(dir.path() / "missing").string()}), InputError);
+}
+
+TEST(ReportTest, WritesTablesAndPlots) {
+  TempDir dir;
+  for (const auto& [path, text] : FixtureRuns()) WriteText(dir.path() / path / "run.json", text);
+  const Report report = BuildReport(CollectRuns({dir.path().string()}));
+  const auto files = WriteReport(report, (dir.path() / "report").string());
+  EXPECT_GE(files.size(), 2u + 2u * 10u);
+  for (const auto& f : files) EXPECT_GT(fs::file_size(dir.path() / "report" / f), 100u) << f;
+  const std::string svg = ReadText(dir.path() / "report" / "fig10a_rand_index.svg");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("preseg-only"), std::string::npos);
+}
+
+TEST(PlotTest, NiceTicksCoverTheRangeWithRoundSteps) {
+  const auto t = NiceTicks(0.0, 1.0, 6);
+  ASSERT_EQ(t.size(), 6u);
+  EXPECT_DOUBLE_EQ(t.front(), 0.0);
+  EXPECT_DOUBLE_EQ(t[1], 0.2);
+  EXPECT_NEAR(t.back(), 1.0, 1e-12);
+  const auto u = NiceTicks(3.0, 47.0, 6);
+  EXPECT_LE(u.front(), 3.0);
+  EXPECT_GE(u.back(), 47.0);
+  EXPECT_DOUBLE_EQ(u[1] - u[0], 10.0);
+  const auto flat = NiceTicks(2.0, 2.0, 6);
+  EXPECT_LE(flat.front(), 2.0);
+  EXPECT_GE(flat.back(), 2.0);
+  EXPECT_GE(flat.size(), 2u);
+}
+
+TEST(PlotTest, LineAndBarPlotsDrawTheirData) {
+  LinePlot line;
+  line.title = "t";
+  line.series.push_back({"s", {0, 1, 2}, {0, 1, 0}, {200, 0, 0}});
+  line.series[0].highlight_x = {1};
+  line.series[0].highlight_y = {1};
+  const io::Canvas canvas = RenderCanvas(line);
+  int red_pixels = 0;
+  for (int y = 0; y < canvas.height(); ++y) {
+    for (int x = 0; x < canvas.width(); ++x) {
+      const io::Rgb p = canvas.Pixel(x, y);
+      red_pixels += p[0] > 180 && p[1] < 60 && p[2] < 60;
+    }
+  }
+  EXPECT_GT(red_pixels, 100);
+  const std::string svg = RenderSvg(line);
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);
+  EXPECT_NE(svg.find("<circle"), std::string::npos);
+  BarPlot bars;
+  bars.groups = {"a", "b"};
+  bars.series.push_back({"v", {1.0, std::nan("")}, {0, 0, 200}});
+  const std::string bar_svg = RenderSvg(bars);
+  // One bar for group a (the NaN of group b is left out) plus the legend swatch and background.
+  std::size_t rects = 0;
+  for (std::size_t p = bar_svg.find("<rect"); p != std::string::npos; p = bar_svg.find("<rect", p + 1)) ++rects;
+  EXPECT_EQ(rects, 3u);
+}
+
+}  // namespace
+}  // namespace objscan::eval
