@@ -22,7 +22,7 @@ struct Result {
   std::string err;  // stderr
 };
 
-Result Run(const std::string& args) {
+Result RunObjscan(const std::string& args) {
   const fs::path err_file = fs::temp_directory_path() / ("objscan_e2e_err_" + std::to_string(::getpid()));
   const std::string cmd = std::string(OBJSCAN_BINARY) + " " + args + " 2>" + err_file.string();
   Result r;
@@ -54,11 +54,11 @@ int CountLines(const std::string& s) {
 }
 
 TEST(CliTest, HelpListsEverySubcommandOfTheDesign) {
-  const Result r = Run("--help");
+  const Result r = RunObjscan("--help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* sub : {"scene", "render", "db", "run", "bench", "report"}) {
     EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
-    const Result sub_help = Run(std::string(sub) + " --help");
+    const Result sub_help = RunObjscan(std::string(sub) + " --help");
     EXPECT_EQ(sub_help.exit_code, 0) << sub;
     EXPECT_NE(sub_help.out.find("Usage"), std::string::npos) << sub;
   }
@@ -67,7 +67,7 @@ TEST(CliTest, HelpListsEverySubcommandOfTheDesign) {
 TEST(CliTest, SceneInfoOfAProceduralRoomIsJson) {
   const fs::path dir = TempDir("scene");
   fs::create_directories(dir);
-  const Result r = Run("scene --scene procedural:bedroom:1 --info --topview " + (dir / "top.png").string() +
+  const Result r = RunObjscan("scene --scene procedural:bedroom:1 --info --topview " + (dir / "top.png").string() +
                        " --export " + (dir / "scene.ply").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -98,7 +98,7 @@ TEST(CliTest, BadInputGivesOneLineAndNonZeroExit) {
       {"run --scene procedural:bedroom:1 --db /nonexistent/x.db --out " + dir.string(), "/nonexistent/x.db"},
   };
   for (const auto& c : cases) {
-    const Result r = Run(c.args);
+    const Result r = RunObjscan(c.args);
     EXPECT_NE(r.exit_code, 0) << c.args;
     EXPECT_EQ(CountLines(r.err), 1) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.must_name), std::string::npos) << c.args << "\n" << r.err;
@@ -108,7 +108,7 @@ TEST(CliTest, BadInputGivesOneLineAndNonZeroExit) {
 
 TEST(CliTest, RenderWritesDepthInstanceAndCloud) {
   const fs::path dir = TempDir("render");
-  const Result r = Run("render --scene procedural:office:3 --pose 0,0,1.2,30,-15 --out " + dir.string());
+  const Result r = RunObjscan("render --scene procedural:office:3 --pose 0.6,0.6,2.1,45,-30 --out " + dir.string());
   if (r.exit_code != 0) {
     // The centre of the room may hold furniture for this seed; the error must then say so clearly.
     EXPECT_EQ(CountLines(r.err), 1) << r.err;
@@ -121,7 +121,7 @@ TEST(CliTest, RenderWritesDepthInstanceAndCloud) {
 }
 
 TEST(CliTest, PrintConfigMatchesDefaultYaml) {
-  const Result r = Run("run --print-config");
+  const Result r = RunObjscan("run --print-config");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(objscan::testing::ProjectRoot() + "/config/default.yaml");
   std::stringstream ss;
@@ -132,12 +132,12 @@ TEST(CliTest, PrintConfigMatchesDefaultYaml) {
 TEST(CliTest, OascWorldLoadsThroughTheCli) {
   OBJSCAN_REQUIRE_SHARED_DATA(data);
   const std::string world = data + "/oasc-dev/SUNCG/bedroom/0a2f9f9b603e3960459f332c5635051e/0_7/room.world";
-  const Result r = Run("scene --scene " + world + " --model-path " + data + "/gazebo-models --info");
+  const Result r = RunObjscan("scene --scene " + world + " --model-path " + data + "/gazebo-models --info");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["missing_meshes"].empty());
   // Without the model path the wall panels cannot be resolved: one clear line naming the URI.
-  const Result missing = Run("scene --scene " + world + " --info");
+  const Result missing = RunObjscan("scene --scene " + world + " --info");
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_EQ(CountLines(missing.err), 1) << missing.err;
   EXPECT_NE(missing.err.find("drc_practice_valve_wall"), std::string::npos) << missing.err;

@@ -4,6 +4,7 @@
 // the two files show the same thing.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "objscan/io/canvas.h"
@@ -18,6 +19,15 @@ struct PlotSeries {
   bool markers = false;  // draw every point as a small dot
   // Highlighted points drawn as red dots on top (e.g. where the robot switched to the next object).
   std::vector<double> highlight_x, highlight_y;
+
+  static PlotSeries Line(std::string label, std::vector<double> x, std::vector<double> y, io::Rgb color) {
+    PlotSeries s;
+    s.label = std::move(label);
+    s.x = std::move(x);
+    s.y = std::move(y);
+    s.color = color;
+    return s;
+  }
 };
 
 struct LinePlot {

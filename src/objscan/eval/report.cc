@@ -901,8 +901,8 @@ std::vector<std::string> WriteReport(const Report& report, const std::string& ou
       }
       const Curve c = MeanCoverageOverTravel(runs, 41, false);
       const Curve d = MeanQualityOverNbos(runs);
-      p.series.push_back({m, c.x, c.y, PlotColor(color)});
-      q.series.push_back({m, d.x, d.y, PlotColor(color)});
+      p.series.push_back(PlotSeries::Line(m, c.x, c.y, PlotColor(color)));
+      q.series.push_back(PlotSeries::Line(m, d.x, d.y, PlotColor(color)));
       ++color;
     }
     save(p, "fig13a_coverage_travel");

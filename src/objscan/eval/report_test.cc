@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -220,7 +221,8 @@ std::vector<std::pair<fs::path, std::string>> FixtureRuns() {
       f.recall = 0.1 * ++k;
       f.rand_index = 0.5 + 0.03 * k;
       f.total_s = 3.0 * k;
-      const std::string id = std::string(spec).substr(11);
+      std::string id = std::string(spec).substr(11);
+      std::replace(id.begin(), id.end(), ':', '-');
       runs.push_back({fs::path("runs") / id / method, f.Json()});
     }
   }
@@ -297,7 +299,7 @@ TEST(PlotTest, NiceTicksCoverTheRangeWithRoundSteps) {
 TEST(PlotTest, LineAndBarPlotsDrawTheirData) {
   LinePlot line;
   line.title = "t";
-  line.series.push_back({"s", {0, 1, 2}, {0, 1, 0}, {200, 0, 0}});
+  line.series.push_back(PlotSeries::Line("s", {0, 1, 2}, {0, 1, 0}, {200, 0, 0}));
   line.series[0].highlight_x = {1};
   line.series[0].highlight_y = {1};
   const io::Canvas canvas = RenderCanvas(line);
