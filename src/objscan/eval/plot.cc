@@ -259,7 +259,12 @@ Drawing Layout(const LinePlot& plot) {
       if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) pts.emplace_back(X(s.x[i]), Y(s.y[i]));
     }
     if (s.line && pts.size() > 1) d.Polyline(pts, s.color, 2.0);
-    if (s.markers || pts.size() == 1) {
+    // A series that does not move along x (e.g. a run that never travelled) would be an invisible
+    // line: draw its points.
+    const bool degenerate = !pts.empty() && std::all_of(pts.begin(), pts.end(), [&](const Eigen::Vector2d& q) {
+      return std::abs(q.x() - pts.front().x()) < 0.5;
+    });
+    if (s.markers || degenerate) {
       for (const auto& p : pts) d.Dot(p.x(), p.y(), 3.0, s.color);
     }
     LegendEntry(&d, f, index++, s.label, s.color, !s.line);

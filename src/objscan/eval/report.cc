@@ -656,8 +656,13 @@ std::string ReportMarkdown(const Report& report) {
   if (report.by_method.count("ours")) {
     for (const auto& s : report.by_method.at("ours")) {
       md << "| " << Label(s.category) << " | " << s.scenes << (s.failed ? " (+" + std::to_string(s.failed) + " failed)" : "")
-         << " | " << Fix(s.objects_per_scene, 1) << " | " << Pct(s.recall) << " | " << Pct(s.precision) << " | "
-         << Pct(s.recall_floor) << " | " << Pct(s.precision_floor) << " | ";
+         << " | ";
+      if (s.scenes > 0) {
+        md << Fix(s.objects_per_scene, 1) << " | " << Pct(s.recall) << " | " << Pct(s.precision) << " | "
+           << Pct(s.recall_floor) << " | " << Pct(s.precision_floor) << " | ";
+      } else {
+        md << "- | - | - | - | - | ";
+      }
       if (const PaperSceneRow* p = PaperScene(s.category)) {
         md << p->scenes << " | " << p->objects_per_scene << " | " << Fix(p->recall_pct, 2) << "% | "
            << Fix(p->precision_pct, 2) << "% | " << Fix(p->recall_floor_pct, 2) << "% | "

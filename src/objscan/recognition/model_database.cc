@@ -144,6 +144,9 @@ void ModelDatabase::Save(const std::string& path) const {
   w.Array(settings_.bow.absolute_height_edges_m.data(), settings_.bow.absolute_height_edges_m.size());
   w.Pod<double>(settings_.bow.absolute_weight);
   w.Pod<double>(settings_.bow.up_normal_min_z);
+  w.Pod<double>(settings_.bow.size_weight);
+  w.Pod<double>(settings_.bow.height_bin_ratio);
+  w.Pod<double>(settings_.bow.floor_gap_bin_m);
   // Vocabulary.
   w.Pod<std::int32_t>(vocabulary_.dimension());
   w.Pod<std::int32_t>(vocabulary_.soft_assignments());
@@ -258,6 +261,9 @@ ModelDatabase ModelDatabase::Load(const std::string& path) {
   r.Array(s.bow.absolute_height_edges_m.data(), s.bow.absolute_height_edges_m.size(), "settings");
   s.bow.absolute_weight = r.Pod<double>("settings");
   s.bow.up_normal_min_z = r.Pod<double>("settings");
+  s.bow.size_weight = r.Pod<double>("settings");
+  s.bow.height_bin_ratio = r.Pod<double>("settings");
+  s.bow.floor_gap_bin_m = r.Pod<double>("settings");
   try {
     s.keypoints.Validate();
     s.descriptor.Validate();

@@ -88,7 +88,7 @@ class ModelDatabase {
   const AlignmentTarget& keypoint_target(int entry) const { return keypoint_targets_[entry]; }
 
   std::uint32_t NumBins() const {
-    return static_cast<std::uint32_t>(vocabulary_.num_words() * settings_.bow.NumCells());
+    return settings_.bow.NumBins(vocabulary_.num_words());
   }
 
  private:

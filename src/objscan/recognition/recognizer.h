@@ -23,12 +23,12 @@ struct RecognitionOptions {
   // bow is the bag-of-words cosine, O the objectness of eq. (1) after alignment and fit =
   // exp(-sqrt(d(c, m)) / Diag(c)) its similarity half alone, which does not penalise a partial query
   // for what it has not seen yet.
-  double bow_rank_weight = 1.0;
+  double bow_rank_weight = 0.0;
   double fit_rank_weight = 0.0;
-  double objectness_rank_weight = 1.0;
+  double objectness_rank_weight = 0.0;
   // ... * O_visible^visible_rank_weight, where O_visible is eq. (1) with the completeness term taken
   // only over the model keypoints facing the query's sensor side (see QueryDescription).
-  double visible_rank_weight = 0.0;
+  double visible_rank_weight = 1.0;
   double visible_min_cos = 0.2;  // a model keypoint faces the sensor when n . view > this
   AlignmentOptions alignment;
 

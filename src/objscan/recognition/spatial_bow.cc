@@ -17,7 +17,24 @@ void SpatialBowOptions::Validate() const {
   }
   config::RequireNonNegative("recognition.bow.absolute_weight", absolute_weight);
   config::RequireInRange("recognition.bow.up_normal_min_z", up_normal_min_z, 0.0, 1.0);
+  config::RequireNonNegative("recognition.bow.size_weight", size_weight);
+  config::Require(height_bin_ratio > 1.0, "recognition.bow.height_bin_ratio", "must be > 1");
+  config::RequirePositive("recognition.bow.floor_gap_bin_m", floor_gap_bin_m);
 }
+
+namespace {
+
+// Soft assignment of a continuous bin coordinate to its two nearest bins (linear weights).
+void SoftBins(double coordinate, int num_bins, std::uint32_t first_bin, double weight, SparseHistogram* out) {
+  const double c = std::clamp(coordinate, 0.0, static_cast<double>(num_bins - 1));
+  const int lo = static_cast<int>(std::floor(c));
+  const double frac = c - lo;
+  out->push_back({first_bin + static_cast<std::uint32_t>(lo), static_cast<float>(weight * (1.0 - frac))});
+  if (lo + 1 < num_bins && frac > 0.0)
+    out->push_back({first_bin + static_cast<std::uint32_t>(lo + 1), static_cast<float>(weight * frac)});
+}
+
+}  // namespace
 
 int AbsoluteCell(const Eigen::Vector3f& p, const Eigen::Vector3f& normal, const SpatialBowOptions& options) {
   const auto& edges = options.absolute_height_edges_m;
@@ -74,6 +91,14 @@ SparseHistogram ComputeSpatialBow(const Vocabulary& vocabulary, const std::vecto
   emit(global, 1.0);
   emit(relative, options.spatial_weight);
   emit(absolute, options.absolute_weight);
+  if (options.size_weight > 0.0 && !bounds.Empty()) {
+    const std::uint32_t first = static_cast<std::uint32_t>(k * options.NumCells());
+    const double height = std::max(bounds.Size().z(), 0.05);
+    SoftBins(std::log(height / 0.05) / std::log(options.height_bin_ratio), SpatialBowOptions::kHeightBins, first,
+             options.size_weight, &h);
+    SoftBins(std::max(0.0, bounds.min_m.z()) / options.floor_gap_bin_m, SpatialBowOptions::kFloorGapBins,
+             first + SpatialBowOptions::kHeightBins, options.size_weight, &h);
+  }
   return h;
 }
 

@@ -9,6 +9,9 @@
 //   - absolute: height bands above the floor in metres x the keypoint normal's class (facing up, down
 //     or sideways): a seat at 0.45 m, a table top at 0.75 m and a bed at 0.5 m differ here even when
 //     their local shape words do not, and a partial view keeps its heights.
+// Beside the words, two "size words" describe the whole point set: its height (log-spaced bins) and
+// the height of its lowest point (a window or a wall cabinet does not reach the floor); both
+// survive a view from one side, unlike the footprint. Each is soft-assigned to its two nearest bins.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -26,6 +29,9 @@ struct SpatialBowOptions {
   std::vector<double> absolute_height_edges_m = {0.15, 0.35, 0.55, 0.8, 1.1, 1.5};
   double absolute_weight = 1.0;  // weight of the absolute level (0 = off)
   double up_normal_min_z = 0.7;  // |n.z| above this: facing up / down
+  double size_weight = 0.1;      // weight of the size words (0 = off)
+  double height_bin_ratio = 1.15;  // consecutive height bins differ by this factor (from 5 cm)
+  double floor_gap_bin_m = 0.15;   // bin width of the lowest point's height
 
   template <class V>
   void Visit(V& v) {
@@ -35,11 +41,20 @@ struct SpatialBowOptions {
     v("absolute_height_edges_m", absolute_height_edges_m);
     v("absolute_weight", absolute_weight);
     v("up_normal_min_z", up_normal_min_z);
+    v("size_weight", size_weight);
+    v("height_bin_ratio", height_bin_ratio);
+    v("floor_gap_bin_m", floor_gap_bin_m);
   }
   void Validate() const;
   int NumRelativeCells() const { return height_bands * radial_rings; }
   int NumAbsoluteCells() const { return 3 * (static_cast<int>(absolute_height_edges_m.size()) + 1); }
   int NumCells() const { return 1 + NumRelativeCells() + NumAbsoluteCells(); }
+  static constexpr int kHeightBins = 32;
+  static constexpr int kFloorGapBins = 16;
+  // Word bins (num_words x NumCells()) followed by the size bins.
+  std::uint32_t NumBins(int num_words) const {
+    return static_cast<std::uint32_t>(num_words * NumCells() + kHeightBins + kFloorGapBins);
+  }
 };
 
 struct HistogramBin {
