@@ -22,7 +22,7 @@ struct DatabaseBuildOptions {
   // Database scans are noise-free: the models are clean and their points should describe the
   // shape itself; live queries carry sensor noise, which the fused map mostly averages out.
   bool scan_noise = false;
-  double store_voxel_m = 0.02;   // stored entry points (for alignment consumers, NBV, replacement)
+  double store_voxel_m = 0.03;   // stored entry points (for consumers: NBV, model replacement)
   int min_entry_points = 40;     // components with fewer surface elements are not entries
   bool include_components = true;
   bool include_pairs = true;

@@ -57,7 +57,8 @@ struct DatabaseSettings {
 
 class ModelDatabase {
  public:
-  static constexpr std::uint32_t kFormatVersion = 1;
+  // 2: spatial BoW with absolute-height, normal and size words (settings layout changed).
+  static constexpr std::uint32_t kFormatVersion = 2;
 
   ModelDatabase() = default;
   ModelDatabase(ModelDatabase&&) = default;

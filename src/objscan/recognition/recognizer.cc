@@ -19,6 +19,7 @@ void RecognitionOptions::Validate() const {
   config::RequireNonNegative("recognition.objectness_rank_weight", objectness_rank_weight);
   config::RequireNonNegative("recognition.visible_rank_weight", visible_rank_weight);
   config::RequireInRange("recognition.visible_min_cos", visible_min_cos, -1.0, 1.0);
+  config::Require(max_per_category >= 0, "recognition.max_per_category", "must be >= 0");
   alignment.Validate();
 }
 
@@ -113,8 +114,16 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
   }
   std::stable_sort(result.begin(), result.end(),
                    [](const SimilarModel& a, const SimilarModel& b) { return a.rank_score > b.rank_score; });
-  if (static_cast<int>(result.size()) > options_.num_similar_models) result.resize(options_.num_similar_models);
-  return result;
+  std::vector<SimilarModel> chosen;
+  std::vector<int> per_category(world::kNumCategories, 0);
+  for (SimilarModel& m : result) {
+    if (static_cast<int>(chosen.size()) == options_.num_similar_models) break;
+    const int c = world::CategoryId(database_.entries()[m.entry].category);
+    if (options_.max_per_category > 0 && per_category[c] >= options_.max_per_category) continue;
+    ++per_category[c];
+    chosen.push_back(std::move(m));
+  }
+  return chosen;
 }
 
 }  // namespace objscan::recognition

@@ -24,12 +24,15 @@ struct RecognitionOptions {
   // exp(-sqrt(d(c, m)) / Diag(c)) its similarity half alone, which does not penalise a partial query
   // for what it has not seen yet.
   double bow_rank_weight = 0.0;
-  double fit_rank_weight = 0.0;
+  double fit_rank_weight = 1.0;
   double objectness_rank_weight = 0.0;
   // ... * O_visible^visible_rank_weight, where O_visible is eq. (1) with the completeness term taken
   // only over the model keypoints facing the query's sensor side (see QueryDescription).
   double visible_rank_weight = 1.0;
   double visible_min_cos = 0.2;  // a model keypoint faces the sensor when n . view > this
+  // At most this many entries of one category in M(c) (0 = no limit): the post-segmentation's graph
+  // cut chooses among categories, so M(c) keeps alternatives instead of five near-identical boxes.
+  int max_per_category = 2;
   AlignmentOptions alignment;
 
   template <class V>
@@ -41,6 +44,7 @@ struct RecognitionOptions {
     v("objectness_rank_weight", objectness_rank_weight);
     v("visible_rank_weight", visible_rank_weight);
     v("visible_min_cos", visible_min_cos);
+    v("max_per_category", max_per_category);
     v("alignment", alignment);
   }
   void Validate() const;

@@ -29,7 +29,7 @@ struct SpatialBowOptions {
   std::vector<double> absolute_height_edges_m = {0.15, 0.35, 0.55, 0.8, 1.1, 1.5};
   double absolute_weight = 1.0;  // weight of the absolute level (0 = off)
   double up_normal_min_z = 0.7;  // |n.z| above this: facing up / down
-  double size_weight = 0.1;      // weight of the size words (0 = off)
+  double size_weight = 0.2;      // weight of the size words (0 = off)
   double height_bin_ratio = 1.15;  // consecutive height bins differ by this factor (from 5 cm)
   double floor_gap_bin_m = 0.15;   // bin width of the lowest point's height
 

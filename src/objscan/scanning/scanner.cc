@@ -16,7 +16,7 @@
 #include "objscan/planning/next_best_object.h"
 #include "objscan/planning/next_best_view.h"
 #include "objscan/recognition/recognizer.h"
-#include "objscan/scanning/recognizer_matcher.h"
+#include "objscan/recognition/component_matcher.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/sim/depth_camera.h"
@@ -287,7 +287,7 @@ struct Scanner::State {
     const segmentation::ComponentGraph& graph = segmenter.Components(&surface);
     Charge(step, "segment", w.ElapsedMs());
     w.Restart();
-    matcher.set_graph(&graph);
+    matcher.SetComponents(&graph);
     segmentation::PostSegmenterInput input;
     std::set<std::int32_t> included;
     for (const auto& c : graph.components()) {
@@ -541,7 +541,7 @@ struct Scanner::State {
   mapping::StructureDetector structure_detector;
   mapping::StructureResult structure;
   recognition::Recognizer recognizer;
-  RecognizerMatcher matcher;
+  recognition::RecognizerComponentMatcher matcher;
   segmentation::PostSegmenter post_segmenter;
   planning::NextBestView nbv;
   planning::CameraFrustum frustum;

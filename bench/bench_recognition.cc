@@ -1,0 +1,146 @@
+// Benchmarks of recognition (paper §4.2): describing a query, retrieving M(c) from databases of
+// 100, 400 and 1600 entries (the bag-of-words stage alone and the whole retrieval with alignment and
+// objectness of the shortlist), aligning, objectness, Lloyd keypoints and loading a database.
+// The larger databases replicate a database of analytic shapes with perturbed copies (histograms
+// reweighted and thinned, keypoints scaled), so posting lists grow with the item count as they would.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <unistd.h>
+#include <map>
+#include <memory>
+
+#include "objscan/common/rng.h"
+#include "objscan/recognition/alignment.h"
+#include "objscan/recognition/keypoints.h"
+#include "objscan/recognition/objectness.h"
+#include "objscan/recognition/recognizer.h"
+#include "objscan/recognition/test_database.h"
+
+namespace {
+
+using namespace objscan;
+using namespace objscan::recognition;
+
+const ModelDatabase& BaseDatabase() {
+  static const ModelDatabase* db = new ModelDatabase(
+      BuildDatabaseFromScans(testing::ShapeModels(0.012), testing::SmallDatabaseOptions()));
+  return *db;
+}
+
+// `n` entries: the base entries followed by perturbed copies.
+const ModelDatabase& ScaledDatabase(int n) {
+  static std::map<int, std::unique_ptr<ModelDatabase>> cache;
+  auto& slot = cache[n];
+  if (slot) return *slot;
+  const ModelDatabase& base = BaseDatabase();
+  slot = std::make_unique<ModelDatabase>();
+  ModelDatabase& db = *slot;
+  db.mutable_settings() = base.settings();
+  db.set_vocabulary(base.vocabulary());
+  db.mutable_models() = base.models();
+  Rng rng(42);
+  const auto& src = base.entries();
+  for (int i = 0; i < n; ++i) {
+    DatabaseEntry e = src[i % src.size()];
+    if (i >= static_cast<int>(src.size())) {
+      e.kind = EntryKind::kFullModel;  // copies are full models so both scopes grow
+      SparseHistogram h;
+      for (const auto& b : e.bow) {
+        if (rng.Bernoulli(0.8)) h.push_back({b.bin, b.value * static_cast<float>(rng.Uniform(0.5, 1.5))});
+      }
+      e.bow = std::move(h);
+      const float s = static_cast<float>(rng.Uniform(0.8, 1.25));
+      for (auto& k : e.keypoints) k *= s;
+      for (auto& p : e.points) p *= s;
+      e.bounds = geometry::Aabb3();
+    }
+    db.mutable_entries().push_back(std::move(e));
+  }
+  db.Finalize();
+  return db;
+}
+
+geometry::PointCloud ChairQuery() {
+  geometry::PointCloud cloud;
+  testing::ChairLike(0.01, &cloud.points, &cloud.normals);
+  geometry::PointCloud partial;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (cloud.normals[i].x() > 0.5f || cloud.normals[i].z() > 0.5f) {
+      partial.points.push_back(cloud.points[i] + Eigen::Vector3f(1.5f, -0.7f, 0.f));
+      partial.normals.push_back(cloud.normals[i]);
+    }
+  }
+  return partial;
+}
+
+void BM_DescribeQuery(benchmark::State& state) {
+  const Recognizer recognizer(BaseDatabase(), RecognitionOptions());
+  const geometry::PointCloud query = ChairQuery();
+  for (auto _ : state) benchmark::DoNotOptimize(recognizer.Describe(query));
+}
+BENCHMARK(BM_DescribeQuery)->Unit(benchmark::kMillisecond);
+
+// The inverted-index stage alone: the shortlist of a described query.
+void BM_RetrieveBow(benchmark::State& state) {
+  const ModelDatabase& db = ScaledDatabase(static_cast<int>(state.range(0)));
+  const Recognizer recognizer(db, RecognitionOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  for (auto _ : state) benchmark::DoNotOptimize(recognizer.Candidates(q, RetrievalScope::kAllEntries, 20));
+  state.counters["items"] = static_cast<double>(db.entries().size());
+}
+BENCHMARK(BM_RetrieveBow)->Arg(100)->Arg(400)->Arg(1600)->Unit(benchmark::kMicrosecond);
+
+// M(c) as callers get it: shortlist, alignment and objectness of each, top n_s.
+void BM_Retrieve(benchmark::State& state) {
+  const ModelDatabase& db = ScaledDatabase(static_cast<int>(state.range(0)));
+  const Recognizer recognizer(db, RecognitionOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  for (auto _ : state) benchmark::DoNotOptimize(recognizer.Retrieve(q, RetrievalScope::kAllEntries));
+  state.counters["items"] = static_cast<double>(db.entries().size());
+}
+BENCHMARK(BM_Retrieve)->Arg(100)->Arg(400)->Arg(1600)->Unit(benchmark::kMillisecond);
+
+void BM_Align(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  const Recognizer recognizer(db, RecognitionOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  const AlignmentTarget& target = db.keypoint_target(db.models()[0].full_entry);
+  const AlignmentOptions options;
+  for (auto _ : state) benchmark::DoNotOptimize(AlignToItem(q.keypoints, target, options));
+}
+BENCHMARK(BM_Align)->Unit(benchmark::kMillisecond);
+
+// Eq. (1) for n_p = 500 keypoints on both sides (kd-tree nearest neighbours both ways).
+void BM_Objectness(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  const auto& c = db.entries()[db.models()[0].full_entry].keypoints;
+  const auto& m = db.entries()[db.models()[1].full_entry].keypoints;
+  for (auto _ : state) benchmark::DoNotOptimize(ComputeObjectness(c, m, Eigen::Affine3d::Identity()));
+}
+BENCHMARK(BM_Objectness)->Unit(benchmark::kMicrosecond);
+
+void BM_LloydKeypoints(benchmark::State& state) {
+  geometry::PointCloud cloud;
+  testing::SofaLike(0.01, &cloud.points, &cloud.normals);
+  const KeypointOptions options;
+  for (auto _ : state) {
+    Rng rng(1);
+    benchmark::DoNotOptimize(SampleKeypointsLloyd(cloud.points, options, &rng));
+  }
+  state.counters["points"] = static_cast<double>(cloud.size());
+}
+BENCHMARK(BM_LloydKeypoints)->Unit(benchmark::kMillisecond);
+
+void BM_LoadDatabase(benchmark::State& state) {
+  const ModelDatabase& db = ScaledDatabase(1600);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("objscan_bench_" + std::to_string(::getpid()) + ".db")).string();
+  db.Save(path);
+  for (auto _ : state) benchmark::DoNotOptimize(ModelDatabase::Load(path));
+  state.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
+  std::filesystem::remove(path);
+}
+BENCHMARK(BM_LoadDatabase)->Unit(benchmark::kMillisecond);
+
+}  // namespace

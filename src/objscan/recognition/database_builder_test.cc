@@ -1,0 +1,193 @@
+#include "objscan/recognition/database_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <unistd.h>
+#include <fstream>
+#include <set>
+
+#include "objscan/common/error.h"
+#include "objscan/io/suncg_categories.h"
+#include "objscan/recognition/recognizer.h"
+#include "objscan/world/procedural/procedural.h"
+#include "shared_data.h"
+
+namespace objscan::recognition {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Fewer views and a small vocabulary keep these builds to seconds.
+DatabaseBuildOptions FastOptions() {
+  DatabaseBuildOptions options;
+  options.scan.ring_elevations_deg = {20.0, 55.0};
+  options.scan.ring_views = {6.0, 3.0};
+  options.vocabulary.num_words = 32;
+  options.vocabulary.max_training_descriptors = 5000;
+  return options;
+}
+
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name)
+      : path_(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+void WriteCubeObj(const fs::path& path, double size) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path);
+  for (int i = 0; i < 8; ++i)
+    out << "v " << size * (i & 1) << " " << size * ((i >> 1) & 1) << " " << size * ((i >> 2) & 1) << "\n";
+  out << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+}
+
+TEST(DatabaseBuilderTest, ProceduralModelsGiveFullModelsComponentsAndPairs) {
+  std::vector<ModelSource> sources;
+  for (const auto& s : ProceduralModelSources(1)) {
+    if (s.category == world::Category::kChair || s.category == world::Category::kTable) sources.push_back(s);
+  }
+  ASSERT_EQ(sources.size(), 2u);
+  const ModelDatabase db = BuildDatabase(sources, FastOptions());
+  ASSERT_EQ(db.models().size(), 2u);
+  std::set<EntryKind> kinds;
+  for (const auto& e : db.entries()) {
+    kinds.insert(e.kind);
+    const DatabaseModel& model = db.models()[e.model_index];
+    EXPECT_EQ(e.category, model.category);
+    EXPECT_FALSE(e.bow.empty());
+    EXPECT_EQ(e.keypoint_normals.size(), e.keypoints.size());
+    if (e.kind == EntryKind::kFullModel) {
+      EXPECT_EQ(e.keypoints.size(), 500u);
+      // Normalised: standing on the floor, centred in XY.
+      EXPECT_NEAR(e.bounds.min_m.z(), 0.0, 0.03);
+      EXPECT_NEAR(e.bounds.Center().x(), 0.0, 0.1);
+      EXPECT_NEAR(e.bounds.Center().y(), 0.0, 0.1);
+    } else {
+      // Components and pairs are parts of their model's full scan.
+      const DatabaseEntry& full = db.entries()[model.full_entry];
+      ASSERT_EQ(e.point_indices.size(), e.points.size());
+      for (std::size_t k = 0; k < e.points.size(); ++k) EXPECT_EQ(e.points[k], full.points[e.point_indices[k]]);
+      EXPECT_LT(e.points.size(), full.points.size());
+    }
+  }
+  EXPECT_TRUE(kinds.count(EntryKind::kFullModel));
+  EXPECT_TRUE(kinds.count(EntryKind::kComponent)) << "the chair and the table should split into parts";
+
+  // A fresh single view of the chair model is recognized as the chair, placed on it.
+  const Recognizer recognizer(db, RecognitionOptions());
+  const geometry::TriangleMesh mesh = LoadModelSourceMesh(db.models()[0]);
+  VirtualScanOptions scan = FastOptions().scan;
+  Rng rng(3);
+  const ModelScan view = ScanModel(mesh, {ViewFrom(geometry::Bounds(mesh), 0.7, 0.5, scan)}, scan, true, &rng);
+  const auto similar = recognizer.Retrieve(recognizer.Describe(view.surface), RetrievalScope::kFullModels);
+  ASSERT_FALSE(similar.empty());
+  EXPECT_EQ(db.entries()[similar[0].entry].category, db.models()[0].category);
+}
+
+TEST(DatabaseBuilderTest, FolderListingFindsCategoriesAndModelNetLayout) {
+  TempDir dir("objscan_models");
+  WriteCubeObj(dir.path() / "chair" / "a.obj", 0.5);
+  WriteCubeObj(dir.path() / "night_stand" / "train" / "b.obj", 0.5);
+  WriteCubeObj(dir.path() / "night_stand" / "test" / "c.obj", 0.5);
+  WriteCubeObj(dir.path() / "bookshelf" / "d.obj", 0.5);
+  WriteCubeObj(dir.path() / "airplane" / "e.obj", 0.5);
+  std::ofstream(dir.path() / "chair" / "notes.txt") << "not a mesh";
+  std::vector<std::string> skipped;
+  const auto sources = ModelSourcesFromFolder(dir.path().string(), &skipped);
+  ASSERT_EQ(sources.size(), 4u);
+  std::set<std::string> names;
+  for (const auto& s : sources) names.insert(s.name);
+  EXPECT_TRUE(names.count("chair/a"));
+  EXPECT_TRUE(names.count("night_stand/train/b"));
+  EXPECT_TRUE(names.count("night_stand/test/c"));
+  EXPECT_TRUE(names.count("shelves/d"));  // alias
+  ASSERT_EQ(skipped.size(), 1u);
+  EXPECT_NE(skipped[0].find("airplane"), std::string::npos);
+  EXPECT_FALSE(sources[0].load_mesh().Empty());
+
+  TempDir empty("objscan_models_empty");
+  EXPECT_THROW(ModelSourcesFromFolder(empty.path().string(), nullptr), InputError);
+  EXPECT_THROW(ModelSourcesFromFolder((empty.path() / "missing").string(), nullptr), InputError);
+}
+
+TEST(DatabaseBuilderTest, NormalizeModelScalesUnitlessMeshesAndStandsThemOnTheFloor) {
+  const geometry::TriangleMesh huge = geometry::MakeBox(Eigen::Vector3d(40, 30, 90));  // "centimetres"
+  const geometry::Aabb3 b = geometry::Bounds(NormalizeModel(huge, 0.9));
+  EXPECT_NEAR(b.Size().z(), 0.9, 1e-5);
+  EXPECT_NEAR(b.min_m.z(), 0.0, 1e-5);
+  EXPECT_NEAR(b.Center().x(), 0.0, 1e-5);
+  const geometry::Aabb3 metric = geometry::Bounds(NormalizeModel(geometry::MakeBox(Eigen::Vector3d(0.5, 0.4, 0.9)), 2.0));
+  EXPECT_NEAR(metric.Size().z(), 0.9, 1e-5);  // plausible metres are kept
+}
+
+// A database from the meshes of the OASC dev worlds (folder <category>/<id>.dae assembled with
+// symlinks, categories from the SUNCG mapping and config/suncg_categories.csv) loads and answers.
+TEST(DatabaseBuilderTest, OascDevMeshesBuildALoadableDatabaseThatAnswersQueries) {
+  OBJSCAN_REQUIRE_SHARED_DATA(data);
+  const fs::path suncg = fs::path(data) / "oasc-dev" / "SUNCG";
+  const io::SuncgModelMapping mapping = io::SuncgModelMapping::Load((suncg / "ModelCategoryMapping.csv").string());
+  const io::SuncgCategoryTable table = io::SuncgCategoryTable::Load(io::ResolveConfigPath("suncg_categories.csv"));
+  TempDir dir("objscan_oasc_models");
+  // Up to two models of each of a few categories, in a deterministic order.
+  std::vector<fs::path> model_dirs;
+  for (const auto& e : fs::recursive_directory_iterator(suncg)) {
+    if (e.is_regular_file() && e.path().extension() == ".dae" && e.path().stem() == e.path().parent_path().filename())
+      model_dirs.push_back(e.path());
+  }
+  std::sort(model_dirs.begin(), model_dirs.end());
+  std::map<world::Category, int> per_category;
+  std::set<std::string> ids;
+  int linked = 0;
+  for (const fs::path& dae : model_dirs) {
+    const std::string id = dae.stem().string();
+    const io::SuncgClasses* classes = mapping.Lookup(id);
+    if (!classes || ids.count(id)) continue;
+    const auto category = table.Lookup(*classes);
+    if (!category || world::IsStructural(*category) || *category == world::Category::kOther) continue;
+    if (per_category[*category] >= 2 || (per_category.size() >= 4 && !per_category.count(*category))) continue;
+    ++per_category[*category];
+    ids.insert(id);
+    const fs::path link = dir.path() / world::CategoryName(*category) / (id + ".dae");
+    fs::create_directories(link.parent_path());
+    fs::create_symlink(dae, link);
+    ++linked;
+  }
+  ASSERT_GE(linked, 4) << "expected furniture meshes in " << suncg;
+  std::vector<std::string> skipped;
+  const auto sources = ModelSourcesFromFolder(dir.path().string(), &skipped);
+  EXPECT_TRUE(skipped.empty());
+  const ModelDatabase built = BuildDatabase(sources, FastOptions());
+  const fs::path db_path = dir.path() / "oasc.db";
+  built.Save(db_path.string());
+  const ModelDatabase db = ModelDatabase::Load(db_path.string());
+  ASSERT_EQ(db.models().size(), built.models().size());
+  ASSERT_GE(db.models().size(), 4u);
+
+  // A fresh view of one of the models finds that model's category among M(c), placed with a
+  // plausible objectness.
+  const Recognizer recognizer(db, RecognitionOptions());
+  const DatabaseModel& model = db.models()[0];
+  const geometry::TriangleMesh mesh = LoadModelSourceMesh(model);
+  VirtualScanOptions scan = FastOptions().scan;
+  Rng rng(5);
+  const ModelScan view = ScanModel(mesh, {ViewFrom(geometry::Bounds(mesh), 0.4, 0.5, scan)}, scan, true, &rng);
+  const auto similar = recognizer.Retrieve(recognizer.Describe(view.surface), RetrievalScope::kAllEntries);
+  ASSERT_FALSE(similar.empty());
+  bool found = false;
+  for (const auto& m : similar) found = found || db.entries()[m.entry].category == model.category;
+  EXPECT_TRUE(found) << model.name;
+  EXPECT_GT(similar[0].objectness.objectness, 0.3);
+}
+
+}  // namespace
+}  // namespace objscan::recognition
