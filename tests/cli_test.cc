@@ -1,5 +1,7 @@
 // End-to-end tests of the objscan program: the command line contracts of DESIGN.md.
 #include <gtest/gtest.h>
+
+#include "run_command.h"
 #include <sys/wait.h>
 
 #include <array>
@@ -16,30 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
+using Result = objscan::testing::CommandResult;
 
-Result RunObjscan(const std::string& args) {
-  const fs::path err_file = fs::temp_directory_path() / ("objscan_e2e_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(OBJSCAN_BINARY) + " " + args + " 2>" + err_file.string();
-  Result r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  fs::remove(err_file);
-  return r;
-}
+Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand(OBJSCAN_BINARY, args); }
 
 fs::path TempDir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("objscan_e2e_" + name + "_" + std::to_string(::getpid()));

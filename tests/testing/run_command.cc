@@ -1,0 +1,37 @@
+#include "run_command.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace objscan::testing {
+
+CommandResult RunCommand(const std::string& binary, const std::string& args) {
+  namespace fs = std::filesystem;
+  static std::atomic<int> counter{0};
+  const fs::path err_file = fs::temp_directory_path() / ("objscan_test_err_" + std::to_string(::getpid()) + "_" +
+                                                         std::to_string(counter++));
+  const std::string cmd = binary + " " + args + " 2>" + err_file.string();
+  CommandResult r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  fs::remove(err_file);
+  return r;
+}
+
+}  // namespace objscan::testing
