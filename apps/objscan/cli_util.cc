@@ -4,8 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "objscan/common/error.h"
@@ -49,17 +47,6 @@ PoseArg ParsePoseArg(const std::string& text, const std::string& option_name) {
     throw InputError(option_name + " '" + text + "': expected 5 comma-separated numbers x,y,z,yaw_deg,pitch_deg");
   }
   return PoseArg{values[0], values[1], values[2], values[3], values[4]};
-}
-
-void WriteFileAtomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw InputError(path + ": cannot write");
-    out << text;
-    if (!out) throw InputError(path + ": write failed");
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace objscan::app

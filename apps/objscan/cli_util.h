@@ -19,7 +19,7 @@ struct PoseArg {
 };
 PoseArg ParsePoseArg(const std::string& text, const std::string& option_name);
 
-// Writes text to `path` atomically (temporary file, then rename): a failure leaves no half file.
-void WriteFileAtomic(const std::string& path, const std::string& text);
+// The built-in procedural model database: built on first use and cached (cmd_run.cc); returns its path.
+std::string DefaultDatabasePath(bool verbose);
 
 }  // namespace objscan::app

@@ -19,13 +19,12 @@
 #include "objscan/common/error.h"
 #include "objscan/eval/benchmark.h"
 #include "objscan/eval/report.h"
+#include "objscan/io/atomic_file.h"
 #include "objscan/io/scene_spec.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/scanning/system_config.h"
 
 namespace objscan::app {
-
-std::string DefaultDatabasePath(bool verbose);  // cmd_run.cc
 
 namespace {
 namespace fs = std::filesystem;
@@ -220,7 +219,7 @@ int RunBench(const BenchArgs& a) {
   std::error_code ec;
   fs::create_directories(out, ec);
   const std::string info_name = shard.count > 1 ? "bench-shard-" + std::to_string(shard.index) + ".json" : "bench.json";
-  WriteFileAtomic((fs::path(out) / info_name).string(), info.dump(2) + "\n");
+  io::WriteFileAtomically((fs::path(out) / info_name).string(), info.dump(2) + "\n");
 
   // The report over everything in OUT (other shards sharing OUT included).
   const eval::Report report = eval::BuildReport(eval::CollectRuns({out}));

@@ -46,7 +46,6 @@ std::string CacheDir() {
 
 }  // namespace
 
-// The built-in procedural database: built on first use and cached (shared with `objscan bench`).
 std::string DefaultDatabasePath(bool verbose) {
   namespace fs = std::filesystem;
   const std::string path = CacheDir() + "/procedural-v" + std::to_string(recognition::ModelDatabase::kFormatVersion) +

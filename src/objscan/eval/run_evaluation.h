@@ -47,7 +47,7 @@ class RunEvaluator {
   // Scores the finished run. Also fills record->objects[i].gt_instance when it was unknown.
   RunMetrics Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const;
 
-  // Instance ids matched by true positives at the last Evaluate (for δ_detect).
+  // Ground-truth object surface voxels (|V_S| of the coverage metrics).
   int num_surface_voxels() const;
 
  private:

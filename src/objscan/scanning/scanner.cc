@@ -285,6 +285,7 @@ struct Scanner::State {
     Stopwatch w;
     structure = structure_detector.Update(&surface);
     const segmentation::ComponentGraph& graph = segmenter.Components(&surface);
+    graph_cache = &graph;
     Charge(step, "segment", w.ElapsedMs());
     w.Restart();
     matcher.SetComponents(&graph);
@@ -480,7 +481,6 @@ struct Scanner::State {
       frontiers.push_back({Eigen::Vector3d(g.centroid_m.x(), g.centroid_m.y(), 0.0), g.size_cells});
     }
     const Eigen::Vector2d from = robot.base().xy_m;
-    std::map<std::size_t, Eigen::Vector2d> snapped;
     auto path_length = [&](const Eigen::Vector3d& goal) -> std::optional<double> {
       Eigen::Vector2d free_xy;
       if (!navigator.NearestFree(goal.head<2>(), config.scanner.frontier_max_snap_m, &free_xy)) return std::nullopt;
@@ -610,7 +610,6 @@ bool Scanner::Step() {
     const bool object_guidance = s.config.scanner.guidance == "object";
     if (object_guidance) {
       s.Analyze(&step);
-      s.graph_cache = &s.segmenter.Components(&s.surface);
     } else {
       s.structure = s.structure_detector.Update(&s.surface);
     }
@@ -649,7 +648,6 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   StepRecord final_step;
   s.RefreshNavigation();
   s.Analyze(&final_step);
-  s.graph_cache = &s.segmenter.Components(&s.surface);
   RunRecord& rec = s.record;
   rec.objects.clear();
   for (const auto& c : s.completed) {
