@@ -99,6 +99,7 @@ int RunScan(const RunArgs& args) {
   outputs.scene_spec = args.scene;
   outputs.database_path = db_path;
   eval::WriteRunOutputs(args.out, outputs);
+  scanner.WriteNavigationMap(args.out + "/navmap.png");
 
   std::printf(
       "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "

@@ -18,6 +18,7 @@ void OccupancyMapOptions::Validate() const {
   config::RequireInRange("clamping_max", clamping_max, 0.5, 1.0);
   config::RequireInRange("occupied_threshold", occupied_threshold, 0.0, 1.0);
   config::RequireNonNegative("view_clearance_m", view_clearance_m);
+  config::RequireInRange("floor_clearance_m", floor_clearance_m, 0.0, 0.5);
 }
 
 struct OccupancyMap::Impl {
@@ -59,12 +60,36 @@ void OccupancyMap::Integrate(const sim::DepthFrame& frame) {
 }
 
 void OccupancyMap::InsertRays(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& end_points) {
+  octomap::OcTree& tree = impl_->tree;
+  const octomap::point3d o(origin.x(), origin.y(), origin.z());
+  const double floor_z = options_.floor_clearance_m;
   octomap::Pointcloud cloud;
   cloud.reserve(end_points.size());
-  for (const Eigen::Vector3f& p : end_points) cloud.push_back(p.x(), p.y(), p.z());
+  // Floor rays first (free space only), then the hits, so a hit wins over a floor ray in one frame.
+  octomap::KeySet floor_free;
+  octomap::KeyRay ray;
+  for (const Eigen::Vector3f& p : end_points) {
+    if (floor_z > 0.0 && p.z() < floor_z) {
+      if (origin.z() <= floor_z) continue;
+      // Clear the ray up to where it comes down to floor_z (and never beyond the range limit).
+      Eigen::Vector3d end = p.cast<double>();
+      const double t = (origin.z() - floor_z) / (origin.z() - end.z());
+      end = origin + t * (end - origin);
+      if ((end - origin).norm() > options_.max_range_m) {
+        end = origin + (end - origin).normalized() * options_.max_range_m;
+      }
+      if (tree.computeRayKeys(o, octomap::point3d(end.x(), end.y(), end.z()), ray)) {
+        floor_free.insert(ray.begin(), ray.end());
+      }
+      continue;
+    }
+    cloud.push_back(p.x(), p.y(), p.z());
+  }
+  for (const octomap::OcTreeKey& key : floor_free) tree.updateNode(key, false, /*lazy_eval=*/false);
   // discretize = true: rays to end points in the same voxel are cast once (much faster, same map).
-  impl_->tree.insertPointCloud(cloud, octomap::point3d(origin.x(), origin.y(), origin.z()), options_.max_range_m,
-                               /*lazy_eval=*/false, /*discretize=*/true);
+  if (cloud.size() > 0) {
+    tree.insertPointCloud(cloud, o, options_.max_range_m, /*lazy_eval=*/false, /*discretize=*/true);
+  }
 }
 
 Occupancy OccupancyMap::Query(const Eigen::Vector3d& p) const {

@@ -26,6 +26,10 @@ struct OccupancyMapOptions {
   // View validity: the camera's voxel and the 6 points this far from it along the axes must be
   // known free (0 = the camera's voxel only).
   double view_clearance_m = 0.0;
+  // End points lower than this (world z; the robot stands on the floor at z = 0) are the floor it
+  // drives on: their rays clear space up to this height but mark nothing occupied, so floor noise
+  // never becomes an obstacle. 0 = plain OctoMap (every end point is a hit).
+  double floor_clearance_m = 0.05;
 
   template <class V>
   void Visit(V& v) {
@@ -38,6 +42,7 @@ struct OccupancyMapOptions {
     v("clamping_max", clamping_max);
     v("occupied_threshold", occupied_threshold);
     v("view_clearance_m", view_clearance_m);
+    v("floor_clearance_m", floor_clearance_m);
   }
   void Validate() const;
 };

@@ -1,5 +1,7 @@
 #include "objscan/mapping/planes.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -166,17 +168,38 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     if (nsum.norm() <= 0.0) continue;
     WallPlane wall;
     wall.normal = Eigen::Vector3d(nsum.x(), nsum.y(), 0.0).normalized();
-    double dsum = 0.0;
-    std::size_t dcount = 0;
-    for (std::size_t k = 0; k < vertical.size(); ++k) {
-      const Eigen::Vector3d p = map->position(vertical[k]).cast<double>();
-      if (std::fabs(wall.normal.dot(p) - d_c) < 1.5 * obin && normals[vertical[k]].cast<double>().dot(wall.normal) > cos_tag) {
-        dsum += wall.normal.dot(p);
-        ++dcount;
+    // Refine the plane by a least-squares line fit (in XY) of the elements near it, twice: a normal
+    // averaged from noisy element normals is off by a degree or so, which along a 4 m wall puts its
+    // ends beyond the tagging tolerance.
+    wall.offset_m = d_c;
+    bool fitted = false;
+    for (int round = 0; round < 3; ++round) {
+      const double band = round == 0 ? 1.5 * obin : tol;
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+      Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
+      std::size_t count = 0;
+      for (std::size_t k = 0; k < vertical.size(); ++k) {
+        const Eigen::Vector3d p = map->position(vertical[k]).cast<double>();
+        if (std::fabs(wall.SignedDistance(p)) < band && normals[vertical[k]].cast<double>().dot(wall.normal) > cos_tag) {
+          mean += p.head<2>();
+          second += p.head<2>() * p.head<2>().transpose();
+          ++count;
+        }
       }
+      if (count < 3) break;
+      mean /= static_cast<double>(count);
+      const Eigen::Matrix2d cov = second / static_cast<double>(count) - mean * mean.transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+      Eigen::Vector2d nxy = eig.eigenvectors().col(0);  // smallest spread: across the wall
+      // A short or blob-like patch has no reliable direction: keep the normal from the normals.
+      if (eig.eigenvalues()(1) > 4.0 * eig.eigenvalues()(0) + 1e-6) {
+        if (nxy.dot(wall.normal.head<2>()) < 0.0) nxy = -nxy;
+        wall.normal = Eigen::Vector3d(nxy.x(), nxy.y(), 0.0);
+      }
+      wall.offset_m = wall.normal.head<2>().dot(mean);
+      fitted = true;
     }
-    if (dcount == 0) continue;
-    wall.offset_m = dsum / dcount;
+    if (!fitted) continue;
     // Inliers and extent.
     std::size_t inliers = 0;
     wall.z_min_m = wall.span_min_m = std::numeric_limits<double>::infinity();

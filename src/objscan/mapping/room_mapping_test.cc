@@ -77,6 +77,38 @@ TEST(OccupancyMapTest, FreeOccupiedUnknownAndNavigationGrid) {
   EXPECT_GT(occupied, 100u);
 }
 
+// The navigator takes the band from 2 cm up: floor hits (z ~ 0 with noise) fall in the voxel layer
+// [0, 5 cm] and would block the whole floor unless floor end points only clear space.
+TEST(OccupancyMapTest, FloorEndPointsClearSpaceButNeverBlock) {
+  const AnalyticWorld room = Room();
+  auto floor_cells = [&](const OccupancyMapOptions& options, std::size_t* occupied, std::size_t* free) {
+    OccupancyMap occupancy(options);
+    Rng rng(3);
+    occupancy.Integrate(room.Render(View(Eigen::Vector3d(0, -0.5, 1.2), 90, -40), &rng, 0.004, 0.003));
+    const sim::OccupancyGrid2D grid = occupancy.Grid(0.02, 1.8, 0.05);
+    *occupied = *free = 0;
+    for (double y = -0.2; y < 0.9; y += 0.05) {
+      for (double x = -0.6; x < 0.6; x += 0.05) {
+        const Eigen::Vector2i c = grid.CellOf(Eigen::Vector2d(x, y));
+        *occupied += grid.At(c.x(), c.y()) == sim::CellState::kOccupied;
+        *free += grid.At(c.x(), c.y()) == sim::CellState::kFree;
+      }
+    }
+    return grid;
+  };
+  std::size_t occupied = 0, free = 0;
+  OccupancyMapOptions plain;
+  plain.floor_clearance_m = 0.0;
+  floor_cells(plain, &occupied, &free);
+  EXPECT_GT(occupied, 50u) << "plain OctoMap: the noisy floor itself is an obstacle";
+  const sim::OccupancyGrid2D grid = floor_cells(OccupancyMapOptions(), &occupied, &free);
+  EXPECT_EQ(occupied, 0u);
+  EXPECT_GT(free, 300u);  // of 22 x 24 cells in front of the box
+  // The box still blocks.
+  const Eigen::Vector2i box = grid.CellOf(Eigen::Vector2d(0.0, 1.02));
+  EXPECT_EQ(grid.At(box.x(), box.y()), sim::CellState::kOccupied);
+}
+
 struct RoomScan {
   SurfaceMap surface;
   OccupancyMap occupancy;

@@ -8,6 +8,7 @@
 #include "objscan/common/error.h"
 #include "objscan/common/rng.h"
 #include "objscan/common/timer.h"
+#include "objscan/io/png.h"
 #include "objscan/mapping/frontiers.h"
 #include "objscan/mapping/occupancy_map.h"
 #include "objscan/mapping/planes.h"
@@ -373,6 +374,18 @@ struct Scanner::State {
         std::size_t n = 0;
         ObjectGeometry(r, nullptr, &bounds, &area, &n);
         if (static_cast<int>(n) < config.scanner.min_object_elements) continue;
+        const int stall = config.scanner.stall_views;
+        const auto history = objectness_history.find(id);
+        if (stall > 0 && history != objectness_history.end() && views_spent[id] >= stall &&
+            static_cast<int>(history->second.size()) > views_spent[id] - stall &&
+            r.objectness - history->second[views_spent[id] - stall] < config.scanner.stall_min_gain) {
+          given_up.insert(id);
+          if (current_ooi == id) current_ooi = -1;
+          step->notes.push_back("object " + std::to_string(id) + ": objectness stalled at " +
+                                std::to_string(r.objectness).substr(0, 5) + " over " + std::to_string(stall) +
+                                " views");
+          continue;
+        }
         planning::NboObject o;
         o.id = id;
         o.objectness = r.objectness;
@@ -464,6 +477,9 @@ struct Scanner::State {
       if (id != current_ooi) ++record.nbo_count;
       current_ooi = id;
       step->ooi = id;
+      auto& history = objectness_history[id];
+      history.resize(static_cast<std::size_t>(views_spent[id]) + 1, 0.0);
+      history[static_cast<std::size_t>(views_spent[id])] = gamma.objectness;
       ++views_spent[id];
       views_of[id].push_back(robot.CameraPose());
       ++record.nbv_views;
@@ -561,6 +577,7 @@ struct Scanner::State {
   std::map<std::int32_t, std::pair<std::uint64_t, double>> match_revision;  // label -> (revision, size)
   std::set<int> given_up;
   std::map<int, int> views_spent;
+  std::map<int, std::vector<double>> objectness_history;  // O(r) of an OOI before each of its views
   std::map<int, std::vector<geometry::Pose3>> views_of;  // NBV camera poses per object of interest
   std::vector<Eigen::Vector3d> visited_goals;
   std::vector<Eigen::Vector3f> occluders;
@@ -726,6 +743,37 @@ void Scanner::ElementObjects(std::vector<int>* object_id, std::vector<int>* cate
     (*object_id)[e] = it->second->id;
     if (it->second->category) (*category_id)[e] = world::CategoryId(*it->second->category);
   }
+}
+
+void Scanner::WriteNavigationMap(const std::string& path, int pixels_per_cell) const {
+  const State& s = *state_;
+  const sim::OccupancyGrid2D& grid = s.navigator.grid();
+  const std::vector<std::uint8_t>& blocked = s.navigator.blocked();
+  const int k = std::max(1, pixels_per_cell);
+  const int w = std::max(1, grid.width * k), h = std::max(1, grid.height * k);
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(w) * h * 3, 128);
+  auto put = [&](int px, int py, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    if (px < 0 || py < 0 || px >= w || py >= h) return;
+    const std::size_t i = 3 * (static_cast<std::size_t>(h - 1 - py) * w + px);  // north up
+    rgb[i] = r, rgb[i + 1] = g, rgb[i + 2] = b;
+  };
+  for (int iy = 0; iy < grid.height; ++iy) {
+    for (int ix = 0; ix < grid.width; ++ix) {
+      const std::size_t c = grid.Index(ix, iy);
+      std::uint8_t r = 128, g = 128, b = 128;
+      if (grid.cells[c] == sim::CellState::kFree) r = g = b = 255;
+      if (grid.cells[c] == sim::CellState::kOccupied) r = g = b = 0;
+      if (blocked[c] && grid.cells[c] == sim::CellState::kFree) r = 255, g = 190, b = 190;
+      for (int dy = 0; dy < k; ++dy)
+        for (int dx = 0; dx < k; ++dx) put(ix * k + dx, iy * k + dy, r, g, b);
+    }
+  }
+  for (const auto& t : s.record.trajectory) {
+    const Eigen::Vector2i c = grid.CellOf(Eigen::Vector2d(t.x_m, t.y_m));
+    for (int dy = 0; dy < k; ++dy)
+      for (int dx = 0; dx < k; ++dx) put(c.x() * k + dx, c.y() * k + dy, 30, 60, 220);
+  }
+  io::WritePngRgb(path, w, h, rgb);
 }
 
 }  // namespace objscan::scanning

@@ -42,6 +42,10 @@ class Scanner {
   const mapping::SurfaceMap& surface_map() const;
   // Per map element: the output object id (-1 none) and category id (-1 unrecognized / structural).
   void ElementObjects(std::vector<int>* object_id, std::vector<int>* category_id) const;
+  // The robot's navigation map as a PNG (what the method believes, not ground truth): free white,
+  // occupied black, unknown grey, cells the robot's centre cannot take (inflation) tinted red, its
+  // path blue. Throws InputError naming the path when it cannot be written.
+  void WriteNavigationMap(const std::string& path, int pixels_per_cell = 4) const;
 
  private:
   struct State;

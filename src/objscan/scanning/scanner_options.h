@@ -18,7 +18,12 @@ struct ScannerOptions {
   // The matcher is asked again about a component only when it grew or shrank by this share since
   // it was last asked (a new frame touches most components a little).
   double rematch_growth_fraction = 0.15;
-  int min_object_elements = 60;        // smaller objects are not candidates for the next best object
+  int min_object_elements = 300;       // smaller objects (map elements, 1 cm) are not NBO candidates
+  // Beyond the paper: an object of interest whose objectness rose by less than stall_min_gain over
+  // its last stall_views views is given up early (more views of it are not helping the recognizer).
+  // stall_views = 0: the paper's behaviour (only max_views_per_object ends the scanning of an object).
+  int stall_views = 2;
+  double stall_min_gain = 0.01;
   bool remove_noise = true;            // paper: objects with O(r) < 0.05 leave T
   double line_of_sight_skip_m = 0.25;  // occupancy this close to the object's centre does not block
   double frontier_max_snap_m = 1.0;    // a frontier goal moves to the nearest free cell within this
@@ -40,6 +45,8 @@ struct ScannerOptions {
     v("frontier_views", frontier_views);
     v("rematch_growth_fraction", rematch_growth_fraction);
     v("min_object_elements", min_object_elements);
+    v("stall_views", stall_views);
+    v("stall_min_gain", stall_min_gain);
     v("remove_noise", remove_noise);
     v("line_of_sight_skip_m", line_of_sight_skip_m);
     v("frontier_max_snap_m", frontier_max_snap_m);
@@ -56,6 +63,8 @@ struct ScannerOptions {
     config::Require(frontier_views >= 1, "scanner.frontier_views", "must be >= 1");
     config::RequireNonNegative("scanner.rematch_growth_fraction", rematch_growth_fraction);
     config::Require(min_object_elements >= 1, "scanner.min_object_elements", "must be >= 1");
+    config::Require(stall_views >= 0, "scanner.stall_views", "must be >= 0");
+    config::RequireNonNegative("scanner.stall_min_gain", stall_min_gain);
     config::RequireNonNegative("scanner.line_of_sight_skip_m", line_of_sight_skip_m);
     config::RequirePositive("scanner.frontier_max_snap_m", frontier_max_snap_m);
     config::RequireNonNegative("scanner.known_free_margin_m", known_free_margin_m);
