@@ -101,6 +101,43 @@ void BM_Retrieve(benchmark::State& state) {
 }
 BENCHMARK(BM_Retrieve)->Arg(100)->Arg(400)->Arg(1600)->Unit(benchmark::kMillisecond);
 
+// The settings before the two-stage verification (every shortlist entry refined with all keypoints,
+// 24 x 5 exact initial hypotheses on 96 points, 12 coarse, 3 refined): the ratio to BM_Retrieve /
+// BM_Align in the same run is the speed-up.
+RecognitionOptions LegacyOptions() {
+  RecognitionOptions o;
+  o.refine_entries = 0;
+  AlignmentOptions& a = o.alignment;
+  a.initial_points = 96;
+  a.initial_truncation_m = 0.0;
+  a.coarse_points = 96;
+  a.coarse_keep = 12;
+  a.coarse_iterations = 5;
+  a.refine_hypotheses = 3;
+  a.refine_iterations = 20;
+  a.refine_points = 0;
+  return o;
+}
+
+void BM_RetrieveLegacy(benchmark::State& state) {
+  const ModelDatabase& db = ScaledDatabase(static_cast<int>(state.range(0)));
+  const Recognizer recognizer(db, LegacyOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  for (auto _ : state) benchmark::DoNotOptimize(recognizer.Retrieve(q, RetrievalScope::kAllEntries));
+  state.counters["items"] = static_cast<double>(db.entries().size());
+}
+BENCHMARK(BM_RetrieveLegacy)->Arg(1600)->Unit(benchmark::kMillisecond);
+
+void BM_AlignLegacy(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  const Recognizer recognizer(db, RecognitionOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  const AlignmentTarget& target = db.keypoint_target(db.models()[0].full_entry);
+  const AlignmentOptions options = LegacyOptions().alignment;
+  for (auto _ : state) benchmark::DoNotOptimize(AlignToItem(q.keypoints, target, options));
+}
+BENCHMARK(BM_AlignLegacy)->Unit(benchmark::kMillisecond);
+
 void BM_Align(benchmark::State& state) {
   const ModelDatabase& db = BaseDatabase();
   const Recognizer recognizer(db, RecognitionOptions());

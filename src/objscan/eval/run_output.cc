@@ -76,7 +76,7 @@ std::string RunJson(const RunOutputInputs& in) {
   Json objects = Json::array();
   for (const auto& o : r.objects) {
     Json obj{{"id", o.id},
-             {"category", o.category ? world::CategoryName(*o.category) : nullptr},
+             {"category", o.category ? Json(world::CategoryName(*o.category)) : Json(nullptr)},
              {"model", o.model},
              {"objectness", o.objectness},
              {"complete", o.complete},

@@ -8,11 +8,15 @@ namespace objscan::recognition {
 
 void AlignmentOptions::Validate() const {
   config::Require(yaw_steps >= 1, "recognition.alignment.yaw_steps", "must be at least 1");
+  config::Require(initial_points >= 3, "recognition.alignment.initial_points", "must be at least 3");
+  config::RequireNonNegative("recognition.alignment.initial_truncation_m", initial_truncation_m);
   config::Require(coarse_points >= 3, "recognition.alignment.coarse_points", "must be at least 3");
   config::Require(coarse_keep >= 1, "recognition.alignment.coarse_keep", "must be at least 1");
   config::Require(coarse_iterations >= 0, "recognition.alignment.coarse_iterations", "must be >= 0");
   config::Require(refine_hypotheses >= 1, "recognition.alignment.refine_hypotheses", "must be at least 1");
   config::Require(refine_iterations >= 0, "recognition.alignment.refine_iterations", "must be >= 0");
+  config::Require(refine_points == 0 || refine_points >= 3, "recognition.alignment.refine_points",
+                  "must be 0 (all) or at least 3");
   config::RequireInRange("recognition.alignment.trim_fraction", trim_fraction, 0.1, 1.0);
   config::RequirePositive("recognition.alignment.inlier_distance_m", inlier_distance_m);
   config::RequirePositive("recognition.alignment.min_scale", min_scale);
@@ -59,8 +63,14 @@ class Icp {
       : query_(query), target_(target), options_(options) {
     moved_.resize(query.size());
     nearest_.resize(query.size());
+    hint_.assign(query.size(), -1);
     d2_.resize(query.size());
     order_.resize(query.size());
+  }
+
+  // The trimmed cost of x on `subset` with every squared distance truncated at truncation_d2.
+  double TruncatedCost(const std::vector<int>& subset, const Similarity4& x, float truncation_d2) {
+    return Correspond(subset, x, truncation_d2);
   }
 
   // Runs `iterations` trimmed ICP rounds on the points `subset` (indices into query), updating *h.
@@ -77,9 +87,9 @@ class Icp {
     }
   }
 
-  // Share of the subset within `distance` of the item under x (call after Run / Correspond).
-  double InlierFraction(const std::vector<int>& subset, const Similarity4& x, double distance) {
-    Correspond(subset, x);
+  // Share of the subset within `distance` of the item under x; *cost gets the trimmed cost.
+  double InlierFraction(const std::vector<int>& subset, const Similarity4& x, double distance, double* cost) {
+    *cost = Correspond(subset, x);
     const double d2max = distance * distance;
     int inliers = 0;
     for (std::size_t k = 0; k < subset.size(); ++k) inliers += d2_[k] <= d2max ? 1 : 0;
@@ -89,13 +99,34 @@ class Icp {
  private:
   // Transforms the subset, finds nearest item points, returns the trimmed mean squared distance and
   // leaves the kept correspondences as order_[0, kept_).
-  double Correspond(const std::vector<int>& subset, const Similarity4& x) {
+  // With a finite truncation_d2, farther points get d2 = truncation_d2 and no correspondence (for
+  // scoring only; Solve must not follow such a call).
+  double Correspond(const std::vector<int>& subset, const Similarity4& x,
+                    float truncation_d2 = std::numeric_limits<float>::infinity()) {
     const Eigen::Matrix3f M = (x.scale * x.R()).cast<float>();
     const Eigen::Vector3f t = x.t.cast<float>();
     const std::size_t n = subset.size();
+    const auto& item = target_.tree().points();
     for (std::size_t k = 0; k < n; ++k) {
       moved_[k] = M * query_[subset[k]] + t;
-      nearest_[k] = target_.tree().Nearest(moved_[k], &d2_[k]);
+      // The point's last correspondence (any earlier round or hypothesis) bounds the search: the
+      // result is still the exact nearest neighbour, found with far fewer nodes visited.
+      int& hint = hint_[subset[k]];
+      float bound = truncation_d2;
+      int guess = -1;
+      if (hint >= 0) {
+        const float hint_d2 = (item[hint] - moved_[k]).squaredNorm();
+        if (hint_d2 < bound) {
+          bound = hint_d2;
+          guess = hint;
+        }
+      }
+      nearest_[k] = target_.tree().NearestBounded(moved_[k], bound, guess, &d2_[k]);
+      if (nearest_[k] >= 0) {
+        hint = nearest_[k];
+      } else {
+        d2_[k] = truncation_d2;
+      }
       order_[k] = static_cast<int>(k);
     }
     kept_ = std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(options_.trim_fraction * n)));
@@ -158,35 +189,82 @@ class Icp {
   const AlignmentOptions& options_;
   std::vector<Eigen::Vector3f> moved_;
   std::vector<int> nearest_;
+  std::vector<int> hint_;  // per query point: its last nearest item point, -1 before the first
   std::vector<float> d2_;
   std::vector<int> order_;
   std::size_t kept_ = 0;
 };
 
+// Convex hull of the points' xy (Andrew's monotone chain): rotating it gives the rotated query's
+// footprint bounds without touching every point for every yaw.
+std::vector<Eigen::Vector2d> FootprintHull(const std::vector<Eigen::Vector3f>& points) {
+  std::vector<Eigen::Vector2d> p(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) p[i] = points[i].head<2>().cast<double>();
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (p.size() < 3) return p;
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i > 0; --i) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i - 1]) <= 0.0) --k;
+    hull[k++] = p[i - 1];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
 }  // namespace
 
-AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
-                            const AlignmentOptions& options) {
-  AlignmentResult result;
-  if (query_points.empty() || target.empty()) return result;
-  const int n = static_cast<int>(query_points.size());
+std::vector<int> StridedSubset(int n, int count) {
+  if (count <= 0 || count > n) count = n;
+  std::vector<int> subset;
+  subset.reserve(count);
+  for (int k = 0; k < count; ++k) subset.push_back(static_cast<int>((static_cast<long>(k) * n) / count));
+  return subset;
+}
 
-  std::vector<int> all(n);
-  for (int i = 0; i < n; ++i) all[i] = i;
-  std::vector<int> coarse;
-  const int n_coarse = std::min(n, options.coarse_points);
-  coarse.reserve(n_coarse);
-  for (int k = 0; k < n_coarse; ++k) coarse.push_back(static_cast<int>((static_cast<long>(k) * n) / n_coarse));
+Eigen::Affine3d AlignmentHypothesis::T_item_query() const {
+  Eigen::Affine3d T = Eigen::Affine3d::Identity();
+  T.linear() = scale * Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = t;
+  return T;
+}
+
+std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>& query_points,
+                                             const AlignmentTarget& target, const AlignmentOptions& options) {
+  std::vector<AlignmentHypothesis> out;
+  if (query_points.empty() || target.empty()) return out;
+  const int n = static_cast<int>(query_points.size());
+  const std::vector<int> initial = StridedSubset(n, options.initial_points);
+  const std::vector<int> coarse = StridedSubset(n, options.coarse_points);
 
   Icp icp(query_points, target, options);
+  const float truncation_d2 = options.initial_truncation_m > 0.0
+                                  ? static_cast<float>(options.initial_truncation_m * options.initial_truncation_m)
+                                  : std::numeric_limits<float>::infinity();
   const geometry::Aabb3& tb = target.bounds();
+  double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
+  for (const auto& p : query_points) {
+    z_lo = std::min(z_lo, static_cast<double>(p.z()));
+    z_hi = std::max(z_hi, static_cast<double>(p.z()));
+  }
+  const std::vector<Eigen::Vector2d> hull = FootprintHull(query_points);
   std::vector<Hypothesis> hypotheses;
   for (int k = 0; k < options.yaw_steps; ++k) {
     Similarity4 x;
     x.yaw = 2.0 * M_PI * k / options.yaw_steps;
     const Eigen::Matrix3d R = x.R();
-    geometry::Aabb3 qb;  // bounds of the rotated query
-    for (const auto& p : query_points) qb.Extend(R * p.cast<double>());
+    geometry::Aabb3 qb;  // bounds of the rotated query: its footprint's hull rotated, its z range
+    for (const auto& p : hull) qb.Extend(R * Eigen::Vector3d(p.x(), p.y(), z_lo));
+    qb.Extend(Eigen::Vector3d(qb.min_m.x(), qb.min_m.y(), z_hi));
     // Translation candidates: footprint centres together, and (for partial views) each footprint side
     // flush with the item's; bottoms together in z.
     std::vector<Eigen::Vector2d> xy;
@@ -202,7 +280,7 @@ AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, co
       Hypothesis h;
       h.x = x;
       h.x.t = Eigen::Vector3d(t_xy.x(), t_xy.y(), tb.min_m.z() - qb.min_m.z());
-      icp.Run(coarse, 0, &h);  // initial cost only
+      h.cost = icp.TruncatedCost(initial, h.x, truncation_d2);
       hypotheses.push_back(h);
     }
   }
@@ -211,12 +289,32 @@ AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, co
   if (static_cast<int>(hypotheses.size()) > options.coarse_keep) hypotheses.resize(options.coarse_keep);
   for (Hypothesis& h : hypotheses) icp.Run(coarse, options.coarse_iterations, &h);
   std::stable_sort(hypotheses.begin(), hypotheses.end(), by_cost);
+  const int n_out = std::min<int>(options.refine_hypotheses, static_cast<int>(hypotheses.size()));
+  for (int r = 0; r < n_out; ++r) {
+    AlignmentHypothesis a;
+    a.yaw_rad = hypotheses[r].x.yaw;
+    a.scale = hypotheses[r].x.scale;
+    a.t = hypotheses[r].x.t;
+    a.cost_m2 = hypotheses[r].cost;
+    out.push_back(a);
+  }
+  return out;
+}
 
+AlignmentResult RefineAlignment(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
+                                const std::vector<AlignmentHypothesis>& hypotheses, const AlignmentOptions& options) {
+  AlignmentResult result;
+  if (query_points.empty() || target.empty() || hypotheses.empty()) return result;
+  const int n = static_cast<int>(query_points.size());
+  const std::vector<int> refine = StridedSubset(n, options.refine_points);
+  Icp icp(query_points, target, options);
   Hypothesis best;
-  const int n_refine = std::min<int>(options.refine_hypotheses, static_cast<int>(hypotheses.size()));
-  for (int r = 0; r < n_refine; ++r) {
-    Hypothesis h = hypotheses[r];
-    icp.Run(all, options.refine_iterations, &h);
+  for (const AlignmentHypothesis& a : hypotheses) {
+    Hypothesis h;
+    h.x.yaw = a.yaw_rad;
+    h.x.scale = a.scale;
+    h.x.t = a.t;
+    icp.Run(refine, options.refine_iterations, &h);
     if (h.cost < best.cost) best = h;
   }
   result.status = AlignmentStatus::kOk;
@@ -224,9 +322,15 @@ AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, co
   best.x.yaw = result.yaw_rad;
   result.scale = best.x.scale;
   result.T_item_query = best.x.Affine();
-  result.trimmed_rms_m = std::sqrt(best.cost);
-  result.inlier_fraction = icp.InlierFraction(all, best.x, options.inlier_distance_m);
+  double cost_all = 0.0;
+  result.inlier_fraction = icp.InlierFraction(StridedSubset(n, 0), best.x, options.inlier_distance_m, &cost_all);
+  result.trimmed_rms_m = std::sqrt(cost_all);
   return result;
+}
+
+AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
+                            const AlignmentOptions& options) {
+  return RefineAlignment(query_points, target, CoarseAlign(query_points, target, options), options);
 }
 
 }  // namespace objscan::recognition

@@ -16,11 +16,16 @@ namespace objscan::recognition {
 struct AlignmentOptions {
   int yaw_steps = 24;                 // initial yaw hypotheses, evenly spaced over 360 deg
   bool side_translation_inits = true; // besides centring, align each side of the footprints (partial views)
-  int coarse_points = 96;             // query points used in the hypothesis search
-  int coarse_keep = 12;               // hypotheses (by initial cost) that get coarse ICP rounds
-  int coarse_iterations = 5;          // ICP rounds per kept hypothesis
-  int refine_hypotheses = 3;          // best hypotheses refined with all query points
-  int refine_iterations = 20;
+  int initial_points = 24;             // query points scoring each initial (yaw, translation) hypothesis
+  // Initial hypotheses are scored with distances truncated here (0 = exact): a far point then costs
+  // a few kd-tree nodes instead of a long search, and one stray part cannot dominate the score.
+  double initial_truncation_m = 0.15;
+  int coarse_points = 48;             // query points used in the coarse ICP rounds
+  int coarse_keep = 4;                 // hypotheses (by initial cost) that get coarse ICP rounds
+  int coarse_iterations = 3;          // ICP rounds per kept hypothesis
+  int refine_hypotheses = 2;          // best hypotheses refined with all query points
+  int refine_iterations = 15;
+  int refine_points = 150;            // query points used in refinement (0 = all)
   double trim_fraction = 0.85;        // share of best correspondences kept in each ICP round
   double inlier_distance_m = 0.03;    // a query point within this of the item counts as explained
   bool estimate_scale = false;        // uniform scale in [min_scale, max_scale]
@@ -32,11 +37,14 @@ struct AlignmentOptions {
   void Visit(V& v) {
     v("yaw_steps", yaw_steps);
     v("side_translation_inits", side_translation_inits);
+    v("initial_points", initial_points);
+    v("initial_truncation_m", initial_truncation_m);
     v("coarse_points", coarse_points);
     v("coarse_keep", coarse_keep);
     v("coarse_iterations", coarse_iterations);
     v("refine_hypotheses", refine_hypotheses);
     v("refine_iterations", refine_iterations);
+    v("refine_points", refine_points);
     v("trim_fraction", trim_fraction);
     v("inlier_distance_m", inlier_distance_m);
     v("estimate_scale", estimate_scale);
@@ -80,7 +88,31 @@ struct AlignmentResult {
   bool ok() const { return status == AlignmentStatus::kOk; }
 };
 
+// One pose hypothesis: p_item = scale * Rz(yaw_rad) * p_query + t.
+struct AlignmentHypothesis {
+  double yaw_rad = 0.0;
+  double scale = 1.0;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  double cost_m2 = 0.0;  // trimmed mean squared distance over the points that scored it
+  Eigen::Affine3d T_item_query() const;
+};
+
+// The whole alignment: CoarseAlign, then RefineAlignment of its hypotheses.
 AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
                             const AlignmentOptions& options);
+
+// The coarse stage alone (yaw x translation search on initial_points, coarse ICP on coarse_points):
+// the refine_hypotheses best hypotheses, best first; empty when the query or the item is empty. Cheap
+// enough to run on a whole shortlist and refine only the promising entries.
+std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>& query_points,
+                                             const AlignmentTarget& target, const AlignmentOptions& options);
+
+// Refines hypotheses (e.g. from CoarseAlign) with refine_points query points and keeps the best;
+// trimmed_rms_m and inlier_fraction are measured over all query points.
+AlignmentResult RefineAlignment(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
+                                const std::vector<AlignmentHypothesis>& hypotheses, const AlignmentOptions& options);
+
+// Evenly strided indices of `count` of n points (all when count <= 0 or count >= n).
+std::vector<int> StridedSubset(int n, int count);
 
 }  // namespace objscan::recognition

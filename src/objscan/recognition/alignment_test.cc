@@ -82,10 +82,44 @@ TEST(AlignmentTest, EstimatesAUniformScaleWhenAsked) {
   for (const auto& p : Keypoints(chair, 8)) query.push_back(Eigen::Vector3f(1.1f * p) + Eigen::Vector3f(0.2f, 0.f, 0.f));
   AlignmentOptions options;
   options.estimate_scale = true;
+  options.refine_points = 0;  // a scale is refined on all points (a subset leaves it biased)
   const AlignmentResult r = AlignToItem(query, target, options);
   ASSERT_TRUE(r.ok());
   EXPECT_NEAR(r.scale, 1.0 / 1.1, 0.01);
   EXPECT_LT(r.trimmed_rms_m, 0.01);
+}
+
+TEST(AlignmentTest, CoarseThenRefineIsAlignToItemAndTruncationKeepsThePose) {
+  std::vector<Eigen::Vector3f> chair, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  const AlignmentTarget target(chair);
+  const double yaw = geometry::DegToRad(71.0);
+  const Eigen::Vector3d offset(0.6, -1.2, 0.0);
+  Eigen::Affine3d T = Eigen::Affine3d::Identity();
+  T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  T.translation() = offset;
+  std::vector<Eigen::Vector3f> query;
+  for (const auto& p : Keypoints(chair, 4)) query.push_back((T * p.cast<double>()).cast<float>());
+  for (double truncation_m : {0.0, 0.15}) {
+    AlignmentOptions options;
+    options.initial_truncation_m = truncation_m;
+    const std::vector<AlignmentHypothesis> coarse = CoarseAlign(query, target, options);
+    ASSERT_EQ(static_cast<int>(coarse.size()), options.refine_hypotheses);
+    EXPECT_LE(coarse[0].cost_m2, coarse[1].cost_m2);
+    const AlignmentResult staged = RefineAlignment(query, target, coarse, options);
+    const AlignmentResult whole = AlignToItem(query, target, options);
+    EXPECT_TRUE(staged.T_item_query.isApprox(whole.T_item_query));
+    SCOPED_TRACE(truncation_m);
+    ExpectRecovers(staged, yaw, offset);
+  }
+  EXPECT_TRUE(RefineAlignment(query, target, {}, AlignmentOptions()).status == AlignmentStatus::kEmptyInput);
+}
+
+TEST(AlignmentTest, StridedSubsetSpreadsOverAllPoints) {
+  EXPECT_EQ(StridedSubset(10, 0).size(), 10u);
+  EXPECT_EQ(StridedSubset(10, 20).size(), 10u);
+  const std::vector<int> s = StridedSubset(10, 4);
+  EXPECT_EQ(s, (std::vector<int>{0, 2, 5, 7}));
 }
 
 TEST(AlignmentTest, EmptyInputIsAStatus) {

@@ -8,7 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
 
+#include "objscan/geometry/voxel_key.h"
 #include "objscan/recognition/keypoints.h"
 
 namespace objscan::recognition {
@@ -25,12 +29,17 @@ std::unique_ptr<DescriptorExtractor> MakeDescriptorExtractor(const DescriptorOpt
   return std::make_unique<FpfhDescriptor>(options);
 }
 
-void FpfhDescriptor::Compute(const geometry::PointCloud& surface, const std::vector<Eigen::Vector3f>& keypoints,
-                             std::vector<float>* descriptors) const {
-  descriptors->assign(keypoints.size() * kDimension, 0.f);
-  if (keypoints.empty() || surface.empty()) return;
+namespace {
 
-  const std::vector<int> kept = VoxelThin(surface.points, options_.surface_voxel_m);
+// The thinned surface with PCA normals oriented to the sensor side (or away from the centroid),
+// points without a usable normal dropped.
+struct OrientedSurface {
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
+  pcl::PointCloud<pcl::Normal>::Ptr normals{new pcl::PointCloud<pcl::Normal>};
+};
+
+OrientedSurface PrepareSurface(const geometry::PointCloud& surface, const DescriptorOptions& options) {
+  const std::vector<int> kept = VoxelThin(surface.points, options.surface_voxel_m);
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
   cloud->reserve(kept.size());
   for (int i : kept) {
@@ -46,7 +55,7 @@ void FpfhDescriptor::Compute(const geometry::PointCloud& surface, const std::vec
   pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> estimation;
   estimation.setInputCloud(cloud);
   estimation.setSearchMethod(tree);
-  estimation.setRadiusSearch(options_.normal_radius_m);
+  estimation.setRadiusSearch(options.normal_radius_m);
   estimation.compute(*normals);
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
   for (const auto& p : *cloud) centroid += p.getVector3fMap();
@@ -59,28 +68,182 @@ void FpfhDescriptor::Compute(const geometry::PointCloud& surface, const std::vec
     if (n.dot(reference) < 0.f) n = -n;
   }
   // Drop surface points without a usable normal (isolated points).
-  {
-    pcl::PointCloud<pcl::PointXYZ>::Ptr c2(new pcl::PointCloud<pcl::PointXYZ>);
-    pcl::PointCloud<pcl::Normal>::Ptr n2(new pcl::PointCloud<pcl::Normal>);
-    for (std::size_t i = 0; i < cloud->size(); ++i) {
-      const auto n = (*normals)[i].getNormalVector3fMap();
-      if (!n.allFinite() || n.squaredNorm() < 0.25f) continue;
-      c2->push_back((*cloud)[i]);
-      n2->push_back((*normals)[i]);
-    }
-    cloud = c2;
-    normals = n2;
+  OrientedSurface out;
+  for (std::size_t i = 0; i < cloud->size(); ++i) {
+    const auto n = (*normals)[i].getNormalVector3fMap();
+    if (!n.allFinite() || n.squaredNorm() < 0.25f) continue;
+    out.cloud->push_back((*cloud)[i]);
+    out.normals->push_back((*normals)[i]);
   }
-  if (cloud->size() < 3) return;
+  return out;
+}
 
+constexpr int kBins = 11;  // per feature; FpfhDescriptor::kDimension = 3 * kBins
+
+// Fixed-radius neighbours through a hash grid with cells of the radius (27 cells per query).
+class RadiusGrid {
+ public:
+  RadiusGrid(const std::vector<Eigen::Vector3f>& points, float radius)
+      : points_(points), radius2_(radius * radius), inv_(1.f / radius) {
+    std::vector<std::pair<geometry::VoxelKey, int>> keyed(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) keyed[i] = {geometry::KeyOf(points[i], inv_), static_cast<int>(i)};
+    std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+      return std::tie(a.first.x, a.first.y, a.first.z, a.second) < std::tie(b.first.x, b.first.y, b.first.z, b.second);
+    });
+    sorted_.reserve(points.size());
+    for (std::size_t i = 0; i < keyed.size(); ++i) {
+      if (i == 0 || !(keyed[i].first == keyed[i - 1].first)) cells_[keyed[i].first] = {static_cast<int>(i), 0};
+      ++cells_[keyed[i].first].second;
+      sorted_.push_back(keyed[i].second);
+    }
+  }
+
+  // Indices (ascending) and squared distances of the points with d^2 < radius^2.
+  void Query(const Eigen::Vector3f& q, std::vector<int>* indices, std::vector<float>* d2) const {
+    indices->clear();
+    d2->clear();
+    const geometry::VoxelKey c = geometry::KeyOf(q, inv_);
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(geometry::VoxelKey{c.x + dx, c.y + dy, c.z + dz});
+          if (it == cells_.end()) continue;
+          for (int s = it->second.first; s < it->second.first + it->second.second; ++s) {
+            const int i = sorted_[s];
+            const float d = (points_[i] - q).squaredNorm();
+            if (d < radius2_) {
+              indices->push_back(i);
+              d2->push_back(d);
+            }
+          }
+        }
+      }
+    }
+  }
+
+ private:
+  const std::vector<Eigen::Vector3f>& points_;
+  float radius2_, inv_;
+  std::vector<int> sorted_;
+  std::unordered_map<geometry::VoxelKey, std::pair<int, int>, geometry::VoxelKeyHash> cells_;
+};
+
+// PCL's pair features of (p1, n1) and (p2, n2) (Rusu et al.): the Darboux frame on the point whose
+// normal makes the smaller angle with the connecting line. False for coincident or degenerate pairs.
+bool PairFeatures(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
+                  const Eigen::Vector3f& n2, float* f1, float* f2, float* f3) {
+  Eigen::Vector3f d = p2 - p1;
+  const float f4 = d.norm();
+  if (f4 == 0.f) return false;
+  const float angle1 = n1.dot(d) / f4, angle2 = n2.dot(d) / f4;
+  const Eigen::Vector3f* u = &n1;
+  const Eigen::Vector3f* other = &n2;
+  // acos(|angle1|) > acos(|angle2|), without the acos (NaN beyond 1 compares false, as there).
+  if (std::abs(angle1) <= 1.f && std::abs(angle2) <= 1.f && std::abs(angle1) < std::abs(angle2)) {
+    u = &n2;
+    other = &n1;
+    d = -d;
+    *f3 = -angle2;
+  } else {
+    *f3 = angle1;
+  }
+  Eigen::Vector3f v = d.cross(*u);
+  const float v_norm = v.norm();
+  if (v_norm == 0.f) return false;
+  v /= v_norm;
+  const Eigen::Vector3f w = u->cross(v);
+  *f2 = v.dot(*other);
+  *f1 = std::atan2(w.dot(*other), u->dot(*other));
+  return true;
+}
+
+int Bin(double normalised) {
+  return std::clamp(static_cast<int>(std::floor(kBins * normalised)), 0, kBins - 1);
+}
+
+}  // namespace
+
+void FpfhDescriptor::Compute(const geometry::PointCloud& surface, const std::vector<Eigen::Vector3f>& keypoints,
+                             std::vector<float>* descriptors) const {
+  descriptors->assign(keypoints.size() * kDimension, 0.f);
+  if (keypoints.empty() || surface.empty()) return;
+  const OrientedSurface s = PrepareSurface(surface, options_);
+  if (s.cloud->size() < 3) return;
+  const int n = static_cast<int>(s.cloud->size());
+  std::vector<Eigen::Vector3f> pts(n), nrm(n);
+  for (int i = 0; i < n; ++i) {
+    pts[i] = (*s.cloud)[i].getVector3fMap();
+    nrm[i] = (*s.normals)[i].getNormalVector3fMap();
+  }
+  const RadiusGrid grid(pts, static_cast<float>(options_.support_radius_m));
+
+  // Keypoint neighbourhoods, and which surface points need a simplified histogram (SPFH).
+  std::vector<std::vector<int>> key_nbrs(keypoints.size());
+  std::vector<std::vector<float>> key_d2(keypoints.size());
+  std::vector<char> needed(n, 0);
+  for (std::size_t k = 0; k < keypoints.size(); ++k) {
+    grid.Query(keypoints[k], &key_nbrs[k], &key_d2[k]);
+    for (int i : key_nbrs[k]) needed[i] = 1;
+  }
+  // SPFH of each needed point over its own neighbourhood: 3 x 11 bins, each feature summing to 100.
+  std::vector<float> spfh(static_cast<std::size_t>(n) * kDimension, 0.f);
+  std::vector<int> nbrs;
+  std::vector<float> nbr_d2;
+  // In float, as PCL has it, so bin edges fall where they fall there.
+  const float kInvTwoPi = 1.0f / (2.0f * static_cast<float>(M_PI));
+  for (int p = 0; p < n; ++p) {
+    if (!needed[p]) continue;
+    grid.Query(pts[p], &nbrs, &nbr_d2);
+    if (nbrs.size() < 2) continue;
+    const float increment = 100.f / static_cast<float>(nbrs.size() - 1);
+    float* h = &spfh[static_cast<std::size_t>(p) * kDimension];
+    for (int q : nbrs) {
+      if (q == p) continue;
+      float f1, f2, f3;
+      if (!PairFeatures(pts[p], nrm[p], pts[q], nrm[q], &f1, &f2, &f3)) continue;
+      h[Bin((f1 + M_PI) * kInvTwoPi)] += increment;
+      h[kBins + Bin((f2 + 1.0) * 0.5)] += increment;
+      h[2 * kBins + Bin((f3 + 1.0) * 0.5)] += increment;
+    }
+  }
+  // FPFH of each keypoint: its neighbours' SPFH weighted by 1/d^2, each feature rescaled to sum 100.
+  for (std::size_t k = 0; k < keypoints.size(); ++k) {
+    if (key_nbrs[k].empty()) continue;  // no support: all-zero row
+    float hist[kDimension] = {};
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (std::size_t j = 0; j < key_nbrs[k].size(); ++j) {
+      if (key_d2[k][j] == 0.f) continue;
+      const float weight = 1.f / key_d2[k][j];
+      const float* h = &spfh[static_cast<std::size_t>(key_nbrs[k][j]) * kDimension];
+      for (int b = 0; b < kDimension; ++b) {
+        const float v = h[b] * weight;
+        sum[b / kBins] += v;
+        hist[b] += v;
+      }
+    }
+    float* out = descriptors->data() + k * kDimension;
+    for (int b = 0; b < kDimension; ++b) {
+      const double total = sum[b / kBins];
+      out[b] = total != 0.0 ? static_cast<float>(hist[b] * (100.0 / total)) : hist[b];
+    }
+  }
+}
+
+void FpfhDescriptor::ComputeWithPcl(const geometry::PointCloud& surface, const std::vector<Eigen::Vector3f>& keypoints,
+                                    std::vector<float>* descriptors) const {
+  descriptors->assign(keypoints.size() * kDimension, 0.f);
+  if (keypoints.empty() || surface.empty()) return;
+  const OrientedSurface s = PrepareSurface(surface, options_);
+  if (s.cloud->size() < 3) return;
+  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
   pcl::PointCloud<pcl::PointXYZ>::Ptr keypoint_cloud(new pcl::PointCloud<pcl::PointXYZ>);
   keypoint_cloud->reserve(keypoints.size());
   for (const auto& k : keypoints) keypoint_cloud->push_back(pcl::PointXYZ(k.x(), k.y(), k.z()));
 
   pcl::FPFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::FPFHSignature33> fpfh;
   fpfh.setInputCloud(keypoint_cloud);
-  fpfh.setSearchSurface(cloud);
-  fpfh.setInputNormals(normals);
+  fpfh.setSearchSurface(s.cloud);
+  fpfh.setInputNormals(s.normals);
   fpfh.setSearchMethod(tree);
   fpfh.setRadiusSearch(options_.support_radius_m);
   pcl::PointCloud<pcl::FPFHSignature33> features;

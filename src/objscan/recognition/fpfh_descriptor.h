@@ -1,5 +1,8 @@
 #pragma once
-// Fast Point Feature Histograms (Rusu et al. 2009) computed by PCL (hidden in the .cc): 33 bins.
+// Fast Point Feature Histograms (Rusu et al. 2009): 33 bins. Normals by PCL's PCA (hidden in the .cc);
+// the histograms by our own flat-array implementation of PCL's FPFHEstimation (same pair features,
+// binning and 1/d^2 weighting, so databases built with PCL's histograms stay valid), several times
+// faster than PCL's (no per-neighbour std::set, no repeated kd-tree radius searches).
 #include "objscan/recognition/descriptor.h"
 
 namespace objscan::recognition {
@@ -12,6 +15,9 @@ class FpfhDescriptor : public DescriptorExtractor {
   int Dimension() const override { return kDimension; }
   void Compute(const geometry::PointCloud& surface, const std::vector<Eigen::Vector3f>& keypoints,
                std::vector<float>* descriptors) const override;
+  // The same with pcl::FPFHEstimation computing the histograms: the reference the tests compare with.
+  void ComputeWithPcl(const geometry::PointCloud& surface, const std::vector<Eigen::Vector3f>& keypoints,
+                      std::vector<float>* descriptors) const;
 
  private:
   DescriptorOptions options_;

@@ -24,8 +24,8 @@ void KdTree3::Build(const std::vector<Eigen::Vector3f>& points) {
 int KdTree3::BuildNode(int begin, int end) {
   const int id = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  nodes_[id].begin = begin;
-  nodes_[id].end = end;
+  nodes_[id].a = begin;
+  nodes_[id].b = end;
   if (end - begin <= kLeafSize) return id;
   Eigen::Vector3f lo = points_[order_[begin]], hi = lo;
   for (int i = begin + 1; i < end; ++i) {
@@ -39,33 +39,52 @@ int KdTree3::BuildNode(int begin, int end) {
   std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                    [&](int a, int b) { return points_[a][dim] < points_[b][dim]; });
   const float split = points_[order_[mid]][dim];
-  const int left = BuildNode(begin, mid);
+  BuildNode(begin, mid);  // preorder: the left child is id + 1
   const int right = BuildNode(mid, end);
   Node& n = nodes_[id];
   n.dim = dim;
   n.split = split;
-  n.left = left;
-  n.right = right;
+  n.a = right;
+  n.b = 0;
   return id;
 }
 
-void KdTree3::NearestRec(int node_id, const Eigen::Vector3f& q, int* best, float* best_d2) const {
-  const Node& n = nodes_[node_id];
-  if (n.dim < 0) {
-    for (int i = n.begin; i < n.end; ++i) {
-      const float d2 = (ordered_[i] - q).squaredNorm();
+void KdTree3::Search(const Eigen::Vector3f& q, int* best, float* best_d2) const {
+  // Depth-first, near side first, with an explicit stack of (node, squared distance to its slab).
+  // Median splits keep the depth below 32 for any int-sized point count.
+  struct Pending {
+    std::int32_t node;
+    float bound_d2;
+  };
+  Pending stack[64];
+  int top = 0;
+  stack[top++] = {0, 0.f};
+  const Node* nodes = nodes_.data();
+  const Eigen::Vector3f* pts = ordered_.data();
+  while (top > 0) {
+    const Pending p = stack[--top];
+    if (p.bound_d2 >= *best_d2) continue;
+    int id = p.node;
+    // Walk down to the leaf on q's side, deferring the far children.
+    while (nodes[id].dim >= 0) {
+      const Node& n = nodes[id];
+      const float diff = q[n.dim] - n.split;
+      const int near = diff < 0.f ? id + 1 : n.a;
+      const int far = diff < 0.f ? n.a : id + 1;
+      const float far_d2 = diff * diff;
+      if (far_d2 < *best_d2) stack[top++] = {far, far_d2};
+      id = near;
+    }
+    const Node& leaf = nodes[id];
+    for (int i = leaf.a; i < leaf.b; ++i) {
+      const float dx = pts[i].x() - q.x(), dy = pts[i].y() - q.y(), dz = pts[i].z() - q.z();
+      const float d2 = dx * dx + dy * dy + dz * dz;
       if (d2 < *best_d2) {
         *best_d2 = d2;
         *best = i;
       }
     }
-    return;
   }
-  const float diff = q[n.dim] - n.split;
-  const int near = diff < 0.f ? n.left : n.right;
-  const int far = diff < 0.f ? n.right : n.left;
-  NearestRec(near, q, best, best_d2);
-  if (diff * diff < *best_d2) NearestRec(far, q, best, best_d2);
 }
 
 int KdTree3::Nearest(const Eigen::Vector3f& q, float* squared_distance) const {
@@ -75,7 +94,23 @@ int KdTree3::Nearest(const Eigen::Vector3f& q, float* squared_distance) const {
   }
   int best = -1;
   float best_d2 = std::numeric_limits<float>::infinity();
-  NearestRec(0, q, &best, &best_d2);
+  Search(q, &best, &best_d2);
+  if (best < 0) {  // only for non-finite queries: fall back to the first point
+    best = 0;
+    best_d2 = (ordered_[0] - q).squaredNorm();
+  }
+  if (squared_distance) *squared_distance = best_d2;
+  return order_[best];
+}
+
+int KdTree3::NearestBounded(const Eigen::Vector3f& q, float bound_d2, int hint, float* squared_distance) const {
+  int best = -1;
+  float best_d2 = bound_d2;
+  if (!points_.empty()) Search(q, &best, &best_d2);
+  if (best < 0) {
+    if (squared_distance) *squared_distance = hint >= 0 ? bound_d2 : std::numeric_limits<float>::infinity();
+    return hint;
+  }
   if (squared_distance) *squared_distance = best_d2;
   return order_[best];
 }
@@ -102,7 +137,7 @@ void KdTree3::KNearest(const Eigen::Vector3f& q, int k, std::vector<int>* indice
     if (static_cast<int>(heap.size()) == k && bound >= heap.front().first) continue;
     const Node& n = nodes_[id];
     if (n.dim < 0) {
-      for (int i = n.begin; i < n.end; ++i) {
+      for (int i = n.a; i < n.b; ++i) {
         const float d2 = (ordered_[i] - q).squaredNorm();
         if (static_cast<int>(heap.size()) < k) {
           heap.emplace_back(d2, i);
@@ -116,8 +151,8 @@ void KdTree3::KNearest(const Eigen::Vector3f& q, int k, std::vector<int>* indice
       continue;
     }
     const float diff = q[n.dim] - n.split;
-    const int near = diff < 0.f ? n.left : n.right;
-    const int far = diff < 0.f ? n.right : n.left;
+    const int near = diff < 0.f ? id + 1 : n.a;
+    const int far = diff < 0.f ? n.a : id + 1;
     // Push far first so near is explored first.
     stack.push_back(far);
     stack_bound.push_back(std::max(bound, diff * diff));

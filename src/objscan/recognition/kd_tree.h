@@ -22,20 +22,26 @@ class KdTree3 {
 
   // Index of the point nearest to q and its squared distance; -1 when the tree is empty.
   int Nearest(const Eigen::Vector3f& q, float* squared_distance) const;
+  // Nearest point strictly closer than sqrt(bound_d2), or `hint` (with its distance) when none is:
+  // pass a good guess (e.g. last ICP round's correspondence) as hint with bound_d2 = its squared
+  // distance and the search prunes almost everything. Returns -1 when nothing is within the bound
+  // and no hint is given.
+  int NearestBounded(const Eigen::Vector3f& q, float bound_d2, int hint, float* squared_distance) const;
   // Up to k nearest points, closest first (indices and squared distances).
   void KNearest(const Eigen::Vector3f& q, int k, std::vector<int>* indices,
                 std::vector<float>* squared_distances) const;
 
  private:
+  // Nodes in preorder: an inner node's left child is the next node. 16 bytes, four per cache line.
   struct Node {
-    // Leaf when dim < 0: points order_[begin, end). Otherwise children at left/right.
-    std::int32_t dim = -1;
+    std::int32_t dim = -1;  // leaf when < 0
     float split = 0.f;
-    std::int32_t left = -1, right = -1;
-    std::int32_t begin = 0, end = 0;
+    std::int32_t a = 0;     // inner: right child; leaf: first point (in ordered_)
+    std::int32_t b = 0;     // leaf: one past the last point
   };
   int BuildNode(int begin, int end);
-  void NearestRec(int node, const Eigen::Vector3f& q, int* best, float* best_d2) const;
+  // Returns the ordered_ index of the nearest point closer than *best_d2 (or *best unchanged).
+  void Search(const Eigen::Vector3f& q, int* best, float* best_d2) const;
 
   std::vector<Eigen::Vector3f> points_;
   std::vector<Eigen::Vector3f> ordered_;  // points_ in leaf order: leaves scan contiguous memory

@@ -20,6 +20,8 @@ void RecognitionOptions::Validate() const {
   config::RequireNonNegative("recognition.visible_rank_weight", visible_rank_weight);
   config::RequireInRange("recognition.visible_min_cos", visible_min_cos, -1.0, 1.0);
   config::Require(max_per_category >= 0, "recognition.max_per_category", "must be >= 0");
+  config::Require(refine_entries >= 0, "recognition.refine_entries", "must be >= 0 (0 = all)");
+  config::Require(estimate_points >= 3, "recognition.estimate_points", "must be at least 3");
   alignment.Validate();
 }
 
@@ -67,18 +69,23 @@ std::vector<ScoredItem> Recognizer::Candidates(const QueryDescription& query, Re
 SimilarModel Recognizer::Match(const QueryDescription& query, int entry) const {
   SimilarModel m;
   m.entry = entry;
-  const AlignmentTarget& target = database_.keypoint_target(entry);
-  m.alignment = AlignToItem(query.keypoints, target, options_.alignment);
-  if (!m.alignment.ok()) return m;
-  const Eigen::Affine3f T = m.alignment.T_item_query.cast<float>();
-  std::vector<Eigen::Vector3f> c_in_m(query.keypoints.size());
-  for (std::size_t i = 0; i < c_in_m.size(); ++i) c_in_m[i] = T * query.keypoints[i];
+  m.alignment = AlignToItem(query.keypoints, database_.keypoint_target(entry), options_.alignment);
+  if (m.alignment.ok()) Measure(query, query.keypoints, &m);
+  return m;
+}
+
+void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points,
+                         SimilarModel* m) const {
+  const AlignmentTarget& target = database_.keypoint_target(m->entry);
+  const Eigen::Affine3f T = m->alignment.T_item_query.cast<float>();
+  std::vector<Eigen::Vector3f> c_in_m(points.size());
+  for (std::size_t i = 0; i < c_in_m.size(); ++i) c_in_m[i] = T * points[i];
   const KdTree3 c_tree(c_in_m);
-  const double diag = m.alignment.scale * query.diagonal_m;
-  m.objectness = ComputeObjectness(c_in_m, c_tree, target.tree(), diag);
-  m.fit = diag > 0.0 ? std::exp(-std::sqrt(m.objectness.similarity_m2) / diag) : 0.0;
-  m.visible_objectness = m.objectness.objectness;
-  const DatabaseEntry& e = database_.entries()[entry];
+  const double diag = m->alignment.scale * query.diagonal_m;
+  m->objectness = ComputeObjectness(c_in_m, c_tree, target.tree(), diag);
+  m->fit = diag > 0.0 ? std::exp(-std::sqrt(m->objectness.similarity_m2) / diag) : 0.0;
+  m->visible_objectness = m->objectness.objectness;
+  const DatabaseEntry& e = database_.entries()[m->entry];
   if (diag > 0.0 && !query.view_direction.isZero() && e.keypoint_normals.size() == e.keypoints.size()) {
     const Eigen::Vector3f view_item = (T.linear() * query.view_direction).normalized();
     double sum = 0.0;
@@ -91,37 +98,84 @@ SimilarModel Recognizer::Match(const QueryDescription& query, int entry) const {
       ++n;
     }
     if (n > 0) {
-      m.visible_objectness = std::exp(-std::sqrt(m.objectness.similarity_m2 + sum / n) / diag);
+      m->visible_objectness = std::exp(-std::sqrt(m->objectness.similarity_m2 + sum / n) / diag);
     }
   }
-  m.rank_score = m.objectness.objectness;
-  return m;
+  m->rank_score = m->objectness.objectness;
+}
+
+void Recognizer::ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const {
+  m->bow_score = candidate.score;
+  m->rank_score = std::pow(std::max(0.f, candidate.score), options_.bow_rank_weight) *
+                  std::pow(m->fit, options_.fit_rank_weight) *
+                  std::pow(m->objectness.objectness, options_.objectness_rank_weight) *
+                  std::pow(m->visible_objectness, options_.visible_rank_weight);
 }
 
 std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, RetrievalScope scope) const {
-  std::vector<SimilarModel> result;
-  if (query.empty()) return result;
-  const std::vector<ScoredItem> shortlist = Candidates(query, scope, options_.shortlist_size);
-  result.reserve(shortlist.size());
-  for (const ScoredItem& c : shortlist) {
-    SimilarModel m = Match(query, c.item);
-    m.bow_score = c.score;
-    m.rank_score = std::pow(std::max(0.f, c.score), options_.bow_rank_weight) *
-                   std::pow(m.fit, options_.fit_rank_weight) *
-                   std::pow(m.objectness.objectness, options_.objectness_rank_weight) *
-                   std::pow(m.visible_objectness, options_.visible_rank_weight);
-    result.push_back(std::move(m));
-  }
-  std::stable_sort(result.begin(), result.end(),
-                   [](const SimilarModel& a, const SimilarModel& b) { return a.rank_score > b.rank_score; });
   std::vector<SimilarModel> chosen;
-  std::vector<int> per_category(world::kNumCategories, 0);
-  for (SimilarModel& m : result) {
+  if (query.empty()) return chosen;
+  const std::vector<ScoredItem> shortlist = Candidates(query, scope, options_.shortlist_size);
+  const int n = static_cast<int>(shortlist.size());
+  const AlignmentOptions& ao = options_.alignment;
+
+  // Stage 1 (only when refining fewer than all): coarse alignment of every entry and a rank estimate
+  // from a keypoint subset; `order` lists the shortlist by that estimate, best first.
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::vector<std::vector<AlignmentHypothesis>> coarse(n);
+  const bool two_stage = options_.refine_entries > 0 && options_.refine_entries < n;
+  if (two_stage) {
+    std::vector<Eigen::Vector3f> subset;
+    for (int i : StridedSubset(static_cast<int>(query.keypoints.size()), options_.estimate_points))
+      subset.push_back(query.keypoints[i]);
+    std::vector<double> estimate(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+      const int entry = shortlist[i].item;
+      coarse[i] = CoarseAlign(query.keypoints, database_.keypoint_target(entry), ao);
+      if (coarse[i].empty()) continue;
+      SimilarModel m;
+      m.entry = entry;
+      m.alignment.status = AlignmentStatus::kOk;
+      m.alignment.T_item_query = coarse[i].front().T_item_query();
+      m.alignment.scale = coarse[i].front().scale;
+      Measure(query, subset, &m);
+      ScoreForRanking(shortlist[i], &m);
+      estimate[i] = m.rank_score;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return estimate[a] > estimate[b]; });
+  }
+
+  // Stage 2: full refinement and measurement in estimate order; at least refine_entries of them, and
+  // more while the category limit leaves M(c) short.
+  std::vector<SimilarModel> refined;
+  refined.reserve(n);
+  const int first_batch = two_stage ? options_.refine_entries : n;
+  for (int r = 0; r < n; ++r) {
+    const int i = order[r];
+    SimilarModel m;
+    m.entry = shortlist[i].item;
+    const AlignmentTarget& target = database_.keypoint_target(m.entry);
+    m.alignment = two_stage ? RefineAlignment(query.keypoints, target, coarse[i], ao)
+                            : AlignToItem(query.keypoints, target, ao);
+    if (m.alignment.ok()) Measure(query, query.keypoints, &m);
+    ScoreForRanking(shortlist[i], &m);
+    refined.push_back(std::move(m));
+    if (r + 1 < first_batch) continue;
+    // Choose n_s from what is refined so far: best first, at most max_per_category per category.
+    std::vector<SimilarModel> sorted = refined;
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const SimilarModel& a, const SimilarModel& b) { return a.rank_score > b.rank_score; });
+    chosen.clear();
+    std::vector<int> per_category(world::kNumCategories, 0);
+    for (SimilarModel& s : sorted) {
+      if (static_cast<int>(chosen.size()) == options_.num_similar_models) break;
+      const int c = world::CategoryId(database_.entries()[s.entry].category);
+      if (options_.max_per_category > 0 && per_category[c] >= options_.max_per_category) continue;
+      ++per_category[c];
+      chosen.push_back(std::move(s));
+    }
     if (static_cast<int>(chosen.size()) == options_.num_similar_models) break;
-    const int c = world::CategoryId(database_.entries()[m.entry].category);
-    if (options_.max_per_category > 0 && per_category[c] >= options_.max_per_category) continue;
-    ++per_category[c];
-    chosen.push_back(std::move(m));
   }
   return chosen;
 }

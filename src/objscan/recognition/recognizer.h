@@ -33,6 +33,12 @@ struct RecognitionOptions {
   // At most this many entries of one category in M(c) (0 = no limit): the post-segmentation's graph
   // cut chooses among categories, so M(c) keeps alternatives instead of five near-identical boxes.
   int max_per_category = 2;
+  // Two-stage verification: every shortlist entry gets the coarse alignment and a cheap rank
+  // estimate on a subset of the query's keypoints (estimate_points of them); only the refine_entries
+  // best by that estimate are refined and measured in full (more when the category limit leaves M(c)
+  // short). 0 = refine the whole shortlist.
+  int refine_entries = 6;
+  int estimate_points = 96;
   AlignmentOptions alignment;
 
   template <class V>
@@ -45,6 +51,8 @@ struct RecognitionOptions {
     v("visible_rank_weight", visible_rank_weight);
     v("visible_min_cos", visible_min_cos);
     v("max_per_category", max_per_category);
+    v("refine_entries", refine_entries);
+    v("estimate_points", estimate_points);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -98,6 +106,11 @@ class Recognizer {
   const RecognitionOptions& options() const { return options_; }
 
  private:
+  // Objectness, fit and visible objectness of `points` (the query's keypoints, or a subset of them)
+  // under m->alignment against m->entry; m->rank_score = objectness.
+  void Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points, SimilarModel* m) const;
+  void ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const;
+
   const ModelDatabase& database_;
   RecognitionOptions options_;
   std::unique_ptr<DescriptorExtractor> descriptor_;

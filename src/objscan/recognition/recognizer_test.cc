@@ -90,6 +90,37 @@ TEST_F(RecognizerTest, RetrievesTheRightModelAmongDistractorsAndPlacesIt) {
   }
 }
 
+// Refining only the entries ranked best by the coarse stage must choose what refining the whole
+// shortlist chooses on clear cases, with identical measurements for the models both return.
+TEST_F(RecognizerTest, TwoStageRetrievalAgreesWithRefiningTheWholeShortlist) {
+  RecognitionOptions staged_options;
+  staged_options.refine_entries = 5;
+  staged_options.shortlist_size = 12;
+  RecognitionOptions full_options = staged_options;
+  full_options.refine_entries = 0;
+  const Recognizer staged(*db_, staged_options), full(*db_, full_options);
+  for (testing::ShapeFn shape : {&testing::ChairLike, &testing::ShelfLike, &testing::SofaLike}) {
+    for (bool partial : {false, true}) {
+      const QueryDescription q = staged.Describe(Query(shape, Placement(-35.0, {0.5, 1.5, 0.0}), partial));
+      for (RetrievalScope scope : {RetrievalScope::kFullModels, RetrievalScope::kAllEntries}) {
+        const auto a = staged.Retrieve(q, scope);
+        const auto b = full.Retrieve(q, scope);
+        ASSERT_FALSE(a.empty());
+        ASSERT_FALSE(b.empty());
+        EXPECT_EQ(a.size(), b.size());
+        EXPECT_EQ(db_->entries()[a[0].entry].category, db_->entries()[b[0].entry].category);
+        for (const SimilarModel& m : a) {
+          for (const SimilarModel& n : b) {
+            if (m.entry == n.entry) {
+              EXPECT_DOUBLE_EQ(m.rank_score, n.rank_score);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST_F(RecognizerTest, ScopeSelectsFullModelsOrAllEntries) {
   const Recognizer recognizer(*db_, RecognitionOptions());
   // A single table leg: among all entries its best match is a leg component of the table; among

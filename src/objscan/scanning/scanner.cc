@@ -294,6 +294,7 @@ struct Scanner::State {
     std::set<std::int32_t> included;
     for (const auto& c : graph.components()) {
       if (done_labels.count(c.label)) continue;
+      if (IsStructureResidue(c)) continue;
       auto& rev = match_revision[c.label];
       const double n = static_cast<double>(c.points.size());
       if (rev.first == 0 || std::abs(n - rev.second) > config.scanner.rematch_growth_fraction * rev.second) {
@@ -338,6 +339,26 @@ struct Scanner::State {
       }
       objects.push_back(static_cast<int>(k));
     }
+  }
+
+  // Whether most of a component lies on the floor or on a detected wall plane (within its span).
+  bool IsStructureResidue(const segmentation::Component& c) const {
+    const double fraction = config.scanner.structure_residue_fraction;
+    if (fraction >= 1.0 || c.points.empty()) return false;
+    const double d = config.scanner.structure_residue_distance_m;
+    std::size_t near = 0;
+    for (const auto& pf : c.points) {
+      const Eigen::Vector3d p = pf.cast<double>();
+      bool on = structure.has_floor && std::abs(p.z() - structure.floor_height_m) < d;
+      for (std::size_t w = 0; !on && w < structure.walls.size(); ++w) {
+        const mapping::WallPlane& wall = structure.walls[w];
+        if (std::abs(wall.SignedDistance(p)) >= d) continue;
+        const double t = -wall.normal.y() * p.x() + wall.normal.x() * p.y();
+        on = t > wall.span_min_m - d && t < wall.span_max_m + d;
+      }
+      near += on;
+    }
+    return static_cast<double>(near) >= fraction * static_cast<double>(c.points.size());
   }
 
   // Points, centre and area of a post-segmented object.
@@ -681,6 +702,12 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   }
   for (int k : s.objects) {
     const auto& r = s.post.objects[k];
+    // Fragments too small to be scanned as objects are reported as unrecognized surface.
+    geometry::Aabb3 bounds;
+    double area_m2 = 0.0;
+    std::size_t num_points = 0;
+    s.ObjectGeometry(r, nullptr, &bounds, &area_m2, &num_points);
+    if (static_cast<int>(num_points) < s.config.scanner.min_object_elements) continue;
     ObjectRecord o;
     o.id = r.component_ids.front();
     o.category = r.category;

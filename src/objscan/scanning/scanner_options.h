@@ -34,6 +34,12 @@ struct ScannerOptions {
   // the current camera) is redundant.
   double min_view_separation_m = 0.4;
   double min_view_separation_deg = 25.0;
+  // Beyond the paper: a component with at least this share of its points within
+  // structure_residue_distance_m of the floor or a detected wall plane is left-over structure (strips
+  // at wall edges, floor borders the structure tags missed): it is not post-segmented, so it cannot
+  // bridge two objects in the graph cut. 1.0 or more = off (the paper's behaviour).
+  double structure_residue_fraction = 0.8;
+  double structure_residue_distance_m = 0.04;
   int threads = 0;                     // 0 = hardware concurrency; results do not depend on it
 
   template <class V>
@@ -53,6 +59,8 @@ struct ScannerOptions {
     v("known_free_margin_m", known_free_margin_m);
     v("min_view_separation_m", min_view_separation_m);
     v("min_view_separation_deg", min_view_separation_deg);
+    v("structure_residue_fraction", structure_residue_fraction);
+    v("structure_residue_distance_m", structure_residue_distance_m);
     v("threads", threads);
   }
   void Validate() const {
@@ -70,6 +78,8 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.known_free_margin_m", known_free_margin_m);
     config::RequireNonNegative("scanner.min_view_separation_m", min_view_separation_m);
     config::RequireInRange("scanner.min_view_separation_deg", min_view_separation_deg, 0.0, 180.0);
+    config::RequireNonNegative("scanner.structure_residue_fraction", structure_residue_fraction);
+    config::RequireNonNegative("scanner.structure_residue_distance_m", structure_residue_distance_m);
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }
 };

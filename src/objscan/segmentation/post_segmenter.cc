@@ -15,6 +15,11 @@ void PostSegmenterOptions::Validate() const {
   config::RequireInRange("noise_objectness", noise_objectness, 0.0, 1.0);
   config::Require(noise_objectness <= complete_objectness, "noise_objectness",
                   "must not exceed complete_objectness");
+  config::Require(smoothness == "paper" || smoothness == "gain", "smoothness", "must be paper or gain");
+  config::RequireNonNegative("smoothness_scale", smoothness_scale);
+  config::Require(gain_reference == "max" || gain_reference == "mean" || gain_reference == "min", "gain_reference",
+                  "must be max, mean or min");
+  config::RequireInRange("merge_min_gain", merge_min_gain, -1.0, 1.0);
   alpha_expansion.Validate();
 }
 
@@ -95,18 +100,54 @@ const MatchResult& PostSegmenter::GroupMatches(const PostSegmenterInput& input, 
   std::sort(key.begin(), key.end());
   auto it = group_cache_.find(key);
   if (it != group_cache_.end()) {
-    ++stats->group_cache_hits;
+    if (stats != nullptr) ++stats->group_cache_hits;
     it->second.used = true;
     return it->second.result;
   }
   std::vector<std::int32_t> ids;
   ids.reserve(key.size());
   for (const auto& k : key) ids.push_back(k.first);
-  ++stats->group_queries;
+  if (stats != nullptr) ++stats->group_queries;
   GroupEntry entry;
   entry.result = matcher_->Match(ids, MatchScope::kFullModels);
   entry.used = true;
   return group_cache_.emplace(std::move(key), std::move(entry)).first->second.result;
+}
+
+void PostSegmenter::PrefetchGroups(const PostSegmenterInput& input, const std::vector<std::vector<int>>& unions,
+                                   PostSegmenterStats* stats) {
+  std::vector<GroupKey> missing;
+  std::vector<std::vector<std::int32_t>> queries;
+  for (const std::vector<int>& members : unions) {
+    GroupKey key;
+    key.reserve(members.size());
+    for (int i : members) {
+      const auto& c = input.components[static_cast<std::size_t>(i)];
+      key.emplace_back(c.id, c.revision);
+    }
+    std::sort(key.begin(), key.end());
+    auto it = group_cache_.find(key);
+    if (it != group_cache_.end()) {
+      ++stats->group_cache_hits;
+      it->second.used = true;
+      continue;
+    }
+    if (std::find(missing.begin(), missing.end(), key) != missing.end()) continue;
+    std::vector<std::int32_t> ids;
+    for (const auto& k : key) ids.push_back(k.first);
+    queries.push_back(std::move(ids));
+    missing.push_back(std::move(key));
+  }
+  if (queries.empty()) return;
+  std::vector<MatchResult> results = matcher_->MatchBatch(queries, MatchScope::kFullModels);
+  if (results.size() != queries.size()) throw InputError("PostSegmenter: matcher returned a wrong batch size");
+  stats->group_queries += static_cast<int>(queries.size());
+  for (std::size_t q = 0; q < missing.size(); ++q) {
+    GroupEntry entry;
+    entry.result = std::move(results[q]);
+    entry.used = true;
+    group_cache_[std::move(missing[q])] = std::move(entry);
+  }
 }
 
 std::vector<std::vector<int>> PostSegmenter::SplitInstances(const PostSegmenterInput& input,
@@ -224,9 +265,32 @@ PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
     }
   }
 
-  // M(c u d) for every adjacent pair: the smoothness weights of eq. (4).
+  // The smoothness weights: eq. (4) from M(c u d) over all entries ("paper"), or the full-model
+  // objectness gain of each adjacent union over its parts ("gain").
+  const bool gain_mode = options_.smoothness == "gain";
   std::vector<double> edge_weight(edge_ids.size(), 0.0);
-  if (options_.graph_cuts) {
+  std::vector<char> edge_cut(edge_ids.size(), 0);
+  if (options_.graph_cuts && gain_mode) {
+    std::vector<std::vector<int>> unions;
+    unions.reserve(static_cast<std::size_t>(n) + edge_ids.size());
+    for (int i = 0; i < n; ++i) unions.push_back({i});
+    for (const auto& [a, b] : edge_ids) unions.push_back({index_of[a], index_of[b]});
+    PrefetchGroups(input, unions, &stats);
+    for (std::size_t e = 0; e < edge_ids.size(); ++e) {
+      const int a = index_of[edge_ids[e].first];
+      const int b = index_of[edge_ids[e].second];
+      const double fa = MaxObjectness(GroupMatches(input, {a}, nullptr));
+      const double fb = MaxObjectness(GroupMatches(input, {b}, nullptr));
+      const double fab = MaxObjectness(GroupMatches(input, {a, b}, nullptr));
+      const double reference = options_.gain_reference == "max"    ? std::max(fa, fb)
+                               : options_.gain_reference == "min" ? std::min(fa, fb)
+                                                                  : 0.5 * (fa + fb);
+      const double gain = fab - reference;
+      edge_weight[e] = options_.smoothness_scale * std::max(0.0, gain);
+      edge_cut[e] = gain < options_.merge_min_gain ? 1 : 0;
+    }
+  }
+  if (options_.graph_cuts && !gain_mode) {
     std::vector<std::size_t> missing;
     for (std::size_t e = 0; e < edge_ids.size(); ++e) {
       const auto& ca = input.components[static_cast<std::size_t>(index_of[edge_ids[e].first])];
@@ -301,7 +365,7 @@ PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
     const int b = index_of[edge_ids[e].second];
     const int la = n > 0 ? solution.labels[static_cast<std::size_t>(a)] : 0;
     // Without graph cuts (the pre-segmentation baseline) every component stays an object of its own.
-    if (options_.graph_cuts && la != none_label && la == solution.labels[static_cast<std::size_t>(b)]) {
+    if (options_.graph_cuts && !edge_cut[e] && la != none_label && la == solution.labels[static_cast<std::size_t>(b)]) {
       groups.Union(a, b);
     }
   }
@@ -311,7 +375,7 @@ PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
   for (std::size_t e = 0; e < edge_ids.size(); ++e) {
     const int a = index_of[edge_ids[e].first];
     const int b = index_of[edge_ids[e].second];
-    if (groups.Find(a) == groups.Find(b)) edges_of_root[groups.Find(a)].push_back(e);
+    if (!edge_cut[e] && groups.Find(a) == groups.Find(b)) edges_of_root[groups.Find(a)].push_back(e);
   }
 
   std::vector<std::pair<std::vector<int>, int>> parts;  // (member indices, graph-cut label)

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -44,6 +45,22 @@ struct PostSegmenterOptions {
   // false: the pre-segmentation baseline (Tateno et al.): each component is recognized on its own
   // (its best M(c)), no smoothness term, no merging.
   bool graph_cuts = true;
+  // Smoothness weight w(c, d) of an adjacent pair, paid when their labels differ:
+  //  "paper": eq. (4), w = max over m in M(c u d) of O(c u d, m) over all database entries.
+  //  "gain":  w = smoothness_scale * max(0, G(c, d)) with the full-model objectness gain
+  //           G(c, d) = F(c u d) - max(F(c), F(d)), F(X) = max over full models m of O(X, m); and an
+  //           edge with G(c, d) < merge_min_gain never joins an object, whatever the labels.
+  // Why "gain": eq. (1) divides by Diag(X), so any large union scores O ~ 0.8-0.9 against some entry
+  // (components and pairs included) and eq. (4) glues whole regions together (a bed absorbs the
+  // dresser through undetected wall strips). Whether the union is more of a whole object than its
+  // parts separates parts of one object from neighbouring objects much better (measured on
+  // procedural rooms, see scanning/postseg_rooms_test.cc).
+  std::string smoothness = "gain";
+  double smoothness_scale = 1.0;  // gain mode: lambda
+  double merge_min_gain = 0.0;    // gain mode: edges with a lower gain are cut
+  // gain mode: what the union is compared with, "max" = max(F(c), F(d)), "mean" = their mean
+  // weighted by nothing, "min" = min(F(c), F(d)).
+  std::string gain_reference = "max";
   AlphaExpansionOptions alpha_expansion;
 
   template <class V>
@@ -53,6 +70,10 @@ struct PostSegmenterOptions {
     v("noise_objectness", noise_objectness);
     v("split_instances", split_instances);
     v("graph_cuts", graph_cuts);
+    v("smoothness", smoothness);
+    v("smoothness_scale", smoothness_scale);
+    v("merge_min_gain", merge_min_gain);
+    v("gain_reference", gain_reference);
     v("alpha_expansion", alpha_expansion);
   }
   void Validate() const;
@@ -151,6 +172,9 @@ class PostSegmenter {
   // Full-model matches of the union of components (by index into the current input).
   const MatchResult& GroupMatches(const PostSegmenterInput& input, const std::vector<int>& members,
                                   PostSegmenterStats* stats);
+  // Fills the group cache for these unions (indices into the current input) with one batch query.
+  void PrefetchGroups(const PostSegmenterInput& input, const std::vector<std::vector<int>>& unions,
+                      PostSegmenterStats* stats);
   // Splits a same-label group into instances; returns its parts (one part = no split).
   std::vector<std::vector<int>> SplitInstances(const PostSegmenterInput& input, const std::vector<int>& members,
                                                const std::vector<std::pair<int, int>>& group_edges,

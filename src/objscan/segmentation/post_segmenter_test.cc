@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "objscan/common/config.h"
@@ -105,6 +106,13 @@ class FakeMatcher : public ComponentMatcher {
   std::map<std::vector<std::int32_t>, MatchResult> table_;
 };
 
+// The paper's eq. (4) smoothness (the default is the objectness gain).
+PostSegmenterOptions PaperOptions() {
+  PostSegmenterOptions options;
+  options.smoothness = "paper";
+  return options;
+}
+
 PostSegmenterInput MakeInput(std::vector<std::int32_t> ids, std::vector<std::pair<std::int32_t, std::int32_t>> edges) {
   PostSegmenterInput input;
   for (std::int32_t id : ids) input.components.push_back({id, 1});
@@ -175,7 +183,7 @@ TEST(PostSegmenterTest, WithoutPairEvidenceTheSeatIsLabelledTable) {
   FakeMatcher matcher = ChairMatcher();
   matcher.SetAllEntries({1, 2}, {{Category::kChair, 0.05}});
   matcher.SetAllEntries({1, 3}, {{Category::kChair, 0.02}});
-  PostSegmenterOptions options;
+  PostSegmenterOptions options = PaperOptions();
   options.split_instances = false;
   PostSegmenter segmenter(options, &matcher);
   const PostSegmenterInput input = MakeInput({1, 2, 3}, {{1, 2}, {1, 3}});
@@ -193,9 +201,15 @@ TEST(PostSegmenterTest, WithoutPairEvidenceTheSeatIsLabelledTable) {
 TEST(PostSegmenterTest, TwoAdjacentChairsStayTwoWithInstanceSplitting) {
   FakeMatcher matcher({{{1, 2, 3}, Category::kChair, 7}, {{4, 5, 6}, Category::kChair, 8}});
   const PostSegmenterInput input = MakeInput({1, 2, 3, 4, 5, 6}, {{1, 2}, {1, 3}, {4, 5}, {4, 6}, {1, 4}});
-  {
+  // Paper smoothness with instance splitting: one "chair" group split in two. Gain smoothness: the
+  // seat-seat union is far less of a chair than either seat with its own chair (gain < 0), so the
+  // edge is cut and no split is needed, with or without splitting.
+  for (const auto& [smoothness, split] : {std::make_pair("paper", true), std::make_pair("gain", true),
+                                          std::make_pair("gain", false)}) {
+    SCOPED_TRACE(std::string(smoothness) + (split ? " split" : ""));
     PostSegmenterOptions options;
-    options.split_instances = true;
+    options.smoothness = smoothness;
+    options.split_instances = split;
     PostSegmenter segmenter(options, &matcher);
     const PostSegmentation seg = segmenter.Update(input);
     ASSERT_EQ(seg.objects.size(), 2u);
@@ -207,12 +221,12 @@ TEST(PostSegmenterTest, TwoAdjacentChairsStayTwoWithInstanceSplitting) {
     }
     EXPECT_EQ(seg.objects[0].best_model()->model_id, 7);
     EXPECT_EQ(seg.objects[1].best_model()->model_id, 8);
-    EXPECT_EQ(seg.stats.splits, 1);
+    EXPECT_EQ(seg.stats.splits, std::string(smoothness) == "paper" ? 1 : 0);
   }
   {
     // The paper's behaviour: one connected "chair" group, one object, which matches a single chair
     // model badly (similarity 1/2, completeness 1): 0.98 / 4.
-    PostSegmenterOptions options;
+    PostSegmenterOptions options = PaperOptions();
     options.split_instances = false;
     PostSegmenter segmenter(options, &matcher);
     const PostSegmentation seg = segmenter.Update(input);
@@ -247,7 +261,7 @@ TEST(PostSegmenterTest, MonitorOnDeskStaysSeparate) {
   matcher.SetAllEntries({3, 4}, {{Category::kMonitor, 0.9}});
   matcher.SetAllEntries({1, 4}, {{Category::kDesk, 0.2}});
   for (bool split : {false, true}) {
-    PostSegmenterOptions options;
+    PostSegmenterOptions options = PaperOptions();
     options.split_instances = split;
     PostSegmenter segmenter(options, &matcher);
     const PostSegmenterInput input = MakeInput({1, 2, 3, 4}, {{1, 2}, {3, 4}, {1, 4}});
@@ -261,6 +275,37 @@ TEST(PostSegmenterTest, MonitorOnDeskStaysSeparate) {
     EXPECT_NEAR(seg.energy, 1.5, 1e-12);
     EXPECT_EQ(ObjectOf(seg, input, 4), &seg.objects[1]);
   }
+}
+
+TEST(PostSegmenterTest, GainSmoothnessKeepsTheMonitorOffTheDesk) {
+  // Full models: desk {1, 2}, monitor {3, 4}. Each part alone is half its model (F = 0.49), each true
+  // pair the whole model (0.98, gain +0.49); stand + top is half a desk with half of it missing
+  // (0.98 / 8, gain < 0): that edge is cut whatever the labels.
+  FakeMatcher matcher({{{1, 2}, Category::kDesk, 1}, {{3, 4}, Category::kMonitor, 2}});
+  matcher.SetAllEntries({4}, {{Category::kDesk, 0.6}, {Category::kMonitor, 0.5}});  // the stand looks like a desk leg
+  const PostSegmenterInput input = MakeInput({1, 2, 3, 4}, {{1, 2}, {3, 4}, {1, 4}});
+  for (bool split : {false, true}) {
+    PostSegmenterOptions options;
+    options.split_instances = split;
+    const PostSegmentation seg = PostSegmenter(options, &matcher).Update(input);
+    ASSERT_EQ(seg.objects.size(), 2u) << "split=" << split;
+    EXPECT_EQ(seg.objects[0].component_ids, (std::vector<std::int32_t>{1, 2}));
+    EXPECT_EQ(seg.objects[0].category, Category::kDesk);
+    EXPECT_EQ(seg.objects[1].component_ids, (std::vector<std::int32_t>{3, 4}));
+    EXPECT_EQ(seg.objects[1].category, Category::kMonitor);
+    // Weights lambda * gain: 0.49 on both true pairs, 0 on the cut one. The stand gives up its desk
+    // preference (cost 0.4 vs 0.5) to follow the screen rather than pay 0.49. Energy: the data costs
+    // (parts alone match at the fake's part_objectness 0.8) and no cut edge with a weight.
+    EXPECT_NEAR(seg.energy, 0.2 + 0.2 + 0.2 + 0.5, 1e-12);
+  }
+  // The paper's weights with a strong (all-entries) stand + top pair: the stand is cheaper as desk
+  // (0.4 + cut 0.8 to the screen) than as monitor (0.5 + cut 0.9 to the top) and joins the desk.
+  matcher.SetAllEntries({1, 4}, {{Category::kDesk, 0.9}});
+  PostSegmenterOptions paper = PaperOptions();
+  paper.split_instances = false;
+  const PostSegmentation merged = PostSegmenter(paper, &matcher).Update(input);
+  EXPECT_EQ(ObjectOf(merged, input, 4), ObjectOf(merged, input, 1));
+  EXPECT_NE(ObjectOf(merged, input, 4), ObjectOf(merged, input, 3));
 }
 
 TEST(PostSegmenterTest, NoiseAndCompleteThresholds) {
@@ -301,12 +346,12 @@ TEST(PostSegmenterTest, NoneLabelCostDecidesUnmatchedComponents) {
   matcher.SetAllEntries({2}, {});
   matcher.SetAllEntries({1, 2}, {{Category::kChair, 0.3}});
   const PostSegmenterInput input = MakeInput({1, 2}, {{1, 2}});
-  PostSegmenterOptions cheap;
+  PostSegmenterOptions cheap = PaperOptions();
   cheap.none_label_cost = 0.5;
   const PostSegmentation a = PostSegmenter(cheap, &matcher).Update(input);
   EXPECT_EQ(a.category_of_component[1], std::nullopt);
   EXPECT_NEAR(a.energy, 0.2 + 0.5 + 0.3, 1e-12);
-  PostSegmenterOptions expensive;
+  PostSegmenterOptions expensive = PaperOptions();
   expensive.none_label_cost = 1.0;
   const PostSegmentation b = PostSegmenter(expensive, &matcher).Update(input);
   EXPECT_EQ(b.category_of_component[1], Category::kChair);
@@ -329,7 +374,7 @@ TEST(PostSegmenterTest, WarmStepQueriesOnlyWhatChanged) {
   std::vector<FakeMatcher::TrueObject> objects;
   PostSegmenterInput input = ChainInput(&objects);
   FakeMatcher matcher(objects);
-  PostSegmenter segmenter(PostSegmenterOptions{}, &matcher);
+  PostSegmenter segmenter(PaperOptions(), &matcher);
 
   const PostSegmentation cold = segmenter.Update(input);
   EXPECT_EQ(matcher.component_calls, 100);
@@ -366,7 +411,7 @@ TEST(PostSegmenterTest, WarmStepQueriesOnlyWhatChanged) {
 
   // The cached result equals a fresh computation.
   FakeMatcher fresh_matcher(objects);
-  const PostSegmentation fresh = PostSegmenter(PostSegmenterOptions{}, &fresh_matcher).Update(input);
+  const PostSegmentation fresh = PostSegmenter(PaperOptions(), &fresh_matcher).Update(input);
   ASSERT_EQ(fresh.objects.size(), warm.objects.size());
   for (std::size_t o = 0; o < fresh.objects.size(); ++o) {
     EXPECT_EQ(fresh.objects[o].component_ids, warm.objects[o].component_ids);
@@ -380,7 +425,7 @@ TEST(PostSegmenterTest, RemovedComponentsLeaveTheCache) {
   std::vector<FakeMatcher::TrueObject> objects;
   PostSegmenterInput input = ChainInput(&objects);
   FakeMatcher matcher(objects);
-  PostSegmenter segmenter(PostSegmenterOptions{}, &matcher);
+  PostSegmenter segmenter(PaperOptions(), &matcher);
   segmenter.Update(input);
   // Drop component 99, then bring it back with the same revision: it must be queried again (its
   // cache entry was dropped) and give the same result as before.
@@ -397,6 +442,31 @@ TEST(PostSegmenterTest, RemovedComponentsLeaveTheCache) {
   matcher.ResetCounts();
   segmenter.Update(input);
   EXPECT_EQ(matcher.component_calls, 100);
+}
+
+TEST(PostSegmenterTest, GainSmoothnessWarmStepQueriesOnlyWhatChanged) {
+  std::vector<FakeMatcher::TrueObject> objects;
+  PostSegmenterInput input = ChainInput(&objects);
+  FakeMatcher matcher(objects);
+  PostSegmenter segmenter(PostSegmenterOptions{}, &matcher);
+  const PostSegmentation cold = segmenter.Update(input);
+  // M(c) of every component (data term), F(c) of every component and F(c u d) of every edge (the
+  // gain); the objects are true pairs, already known.
+  EXPECT_EQ(matcher.component_calls, 100);
+  EXPECT_EQ(matcher.pair_calls, 0);
+  EXPECT_EQ(matcher.full_calls, 100 + 99);
+  ASSERT_EQ(cold.objects.size(), 50u);
+  for (std::size_t k = 0; k < 50; ++k) {
+    const std::int32_t first = static_cast<std::int32_t>(2 * k);
+    EXPECT_EQ(cold.objects[k].component_ids, (std::vector<std::int32_t>{first, first + 1}));
+    EXPECT_DOUBLE_EQ(cold.objects[k].objectness, 0.98);
+  }
+  for (int j = 0; j < 10; ++j) input.components[static_cast<std::size_t>(10 * j)].revision = 2;
+  matcher.ResetCounts();
+  const PostSegmentation warm = segmenter.Update(input);
+  EXPECT_EQ(matcher.component_calls, 10);
+  EXPECT_EQ(matcher.full_calls, 10 + 19);
+  EXPECT_EQ(warm.objects.size(), 50u);
 }
 
 TEST(PostSegmenterTest, EmptyInputAndBadInput) {
@@ -439,7 +509,8 @@ TEST(PostSegmenterTest, OptionsListEveryField) {
   std::vector<std::string> keys;
   for (const auto& kv : values) keys.push_back(kv.first);
   EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
-                                            "split_instances", "graph_cuts", "alpha_expansion.max_sweeps",
+                                            "split_instances", "graph_cuts", "smoothness", "smoothness_scale",
+                                            "merge_min_gain", "gain_reference", "alpha_expansion.max_sweeps",
                                             "alpha_expansion.min_improvement"}));
 }
 
