@@ -490,6 +490,7 @@ struct Scanner::State {
       }
       if (!moved) {
         given_up.insert(id);
+        given_up_no_view.insert(id);
         step->nbv_candidates.clear();
         if (current_ooi == id) current_ooi = -1;
         continue;
@@ -597,6 +598,8 @@ struct Scanner::State {
   std::map<std::int32_t, std::uint64_t> noise_labels;  // label -> match revision when found noise
   std::map<std::int32_t, std::pair<std::uint64_t, double>> match_revision;  // label -> (revision, size)
   std::set<int> given_up;
+  std::set<int> given_up_no_view;  // given up because no NBV candidate was valid (subset of given_up)
+  std::vector<Eigen::Vector2d> stuck_lookarounds;  // where the robot looked around on getting stuck
   std::map<int, int> views_spent;
   std::map<int, std::vector<double>> objectness_history;  // O(r) of an OOI before each of its views
   std::map<int, std::vector<geometry::Pose3>> views_of;  // NBV camera poses per object of interest
@@ -652,7 +655,26 @@ bool Scanner::Step() {
       s.structure = s.structure_detector.Update(&s.surface);
     }
     if (!object_guidance || !s.ScanObjectStep(&step)) {
-      const Termination t = s.ExploreStep(&step);
+      Termination t = s.ExploreStep(&step);
+      // Before giving up, look around once more wherever the robot got stuck: the views show it the
+      // space around it that its earlier, targeted views left unknown.
+      const Eigen::Vector2d here = s.robot.base().xy_m;
+      const bool looked_here = std::any_of(s.stuck_lookarounds.begin(), s.stuck_lookarounds.end(),
+                                           [&](const Eigen::Vector2d& p) { return (p - here).norm() < 0.5; });
+      if (t == Termination::kStuck && !looked_here) {
+        s.stuck_lookarounds.push_back(here);
+        step.action = "frontier";
+        step.look_around = true;
+        step.notes.push_back("no reachable goal: looking around before giving up");
+        const auto views = planning::LookAroundViews(
+            Eigen::Vector3d(here.x(), here.y(), s.config.scanner.start_camera_height_m), s.robot.base().theta_rad,
+            s.config.exploration);
+        for (const auto& T : views) s.TurnInPlaceView(T, &step);
+        // Objects given up for want of a valid view get another chance with the better map.
+        for (int id : s.given_up_no_view) s.given_up.erase(id);
+        s.given_up_no_view.clear();
+        t = Termination::kRunning;
+      }
       if (t != Termination::kRunning) {
         rec.terminated = t;
         step.notes.push_back(std::string("terminated: ") + TerminationName(t));

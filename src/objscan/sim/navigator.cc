@@ -33,6 +33,7 @@ double PolylineLength(const std::vector<Eigen::Vector2d>& points) {
 void NavigatorOptions::Validate() const {
   config::RequirePositive("cell_size_m", cell_size_m);
   config::RequireNonNegative("min_obstacle_height_m", min_obstacle_height_m);
+  config::RequireNonNegative("start_escape_m", start_escape_m);
 }
 
 const char* PlanStatusName(PlanStatus status) {
@@ -148,6 +149,16 @@ bool Navigator::LineOfSight(const Eigen::Vector2d& a, const Eigen::Vector2d& b) 
 Path2D Navigator::Plan(const Eigen::Vector2d& start, const Eigen::Vector2d& goal) const {
   Path2D path;
   if (!IsFree(start)) {
+    Eigen::Vector2d escape;
+    if (options_.start_escape_m > 0.0 && start.allFinite() && NearestFree(start, options_.start_escape_m, &escape)) {
+      path = Plan(escape, goal);
+      if (path.ok()) {
+        path.waypoints.insert(path.waypoints.begin(), start);
+        path.grid_length_m += (escape - start).norm();
+        path.length_m = PolylineLength(path.waypoints);
+      }
+      return path;
+    }
     path.status = PlanStatus::kStartBlocked;
     return path;
   }

@@ -16,12 +16,17 @@ struct NavigatorOptions {
   double cell_size_m = 0.05;
   double min_obstacle_height_m = 0.02;  // anything lower (rugs, the floor itself) is drivable
   bool smooth_path = true;              // line-of-sight shortcuts over the A* cell path
+  // A start that has become blocked (an obstacle seen after the robot got there, now within its
+  // inflation radius) is left by the shortest straight move of at most this length to a free cell;
+  // 0 = a blocked start is kStartBlocked.
+  double start_escape_m = 0.3;
 
   template <class V>
   void Visit(V& v) {
     v("cell_size_m", cell_size_m);
     v("min_obstacle_height_m", min_obstacle_height_m);
     v("smooth_path", smooth_path);
+    v("start_escape_m", start_escape_m);
   }
   void Validate() const;
 };

@@ -136,6 +136,25 @@ TEST(NavigatorTest, EnclosedGoalIsUnreachable) {
   EXPECT_TRUE(nav.Plan(inside, inside + Eigen::Vector2d(0.3, 0.3)).ok());
 }
 
+// A robot whose position became blocked (an obstacle now within its inflation radius) backs off to
+// the nearest free cell first; deep inside an obstacle it stays blocked.
+TEST(NavigatorTest, BlockedStartEscapesToTheNearestFreeCell) {
+  world::Scene scene = Room(4, 4);
+  scene.Add(BoxObject({2.0, 2.0, 0}, {2.5, 2.5, 0.7}));
+  const GroundTruthOccupancy source(scene);
+  const Navigator nav(source, kRadius, kHeight);
+  const Eigen::Vector2d start(2.5 + 0.2, 2.2);  // within the robot radius of the box
+  ASSERT_FALSE(nav.IsFree(start));
+  const Path2D path = nav.Plan(start, {1, 1});
+  ASSERT_TRUE(path.ok());
+  EXPECT_EQ(path.waypoints.front(), start);
+  EXPECT_TRUE(nav.IsFree(path.waypoints[1]));
+  EXPECT_LT((path.waypoints[1] - start).norm(), 0.3 + 1e-9);
+  NavigatorOptions strict;
+  strict.start_escape_m = 0.0;
+  EXPECT_EQ(Navigator(source, kRadius, kHeight, strict).Plan(start, {1, 1}).status, PlanStatus::kStartBlocked);
+}
+
 TEST(NavigatorTest, BlockedStartAndGoalAreStatuses) {
   world::Scene scene = Room(4, 4);
   scene.Add(BoxObject({2.0, 2.0, 0}, {2.5, 2.5, 0.7}));
