@@ -181,3 +181,16 @@ void BM_LoadDatabase(benchmark::State& state) {
 BENCHMARK(BM_LoadDatabase)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+namespace {
+void BM_TmpCoarse(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  const Recognizer recognizer(db, RecognitionOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  const AlignmentTarget& target = db.keypoint_target(db.models()[0].full_entry);
+  AlignmentOptions options;
+  if (state.range(0) == 1) { options.coarse_keep = 1; options.coarse_iterations = 0; }
+  for (auto _ : state) benchmark::DoNotOptimize(CoarseAlign(q.keypoints, target, options));
+}
+BENCHMARK(BM_TmpCoarse)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+}

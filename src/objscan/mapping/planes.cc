@@ -245,26 +245,35 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
   }
   result.walls.swap(walls);
 
-  // Rewrite the tags.
+  TagElements(map, &result);
+  return result;
+}
+
+void StructureDetector::TagElements(SurfaceMap* map, StructureResult* result) const {
+  const std::size_t n = map->size();
+  const double tol = options_.plane_tolerance_m;
+  const double cos_floor = std::cos(options_.floor_max_tilt_deg * M_PI / 180.0);
+  const double cos_tag = std::cos(kTagMaxAngleDeg * M_PI / 180.0);
+  result->num_floor_elements = 0;
+  result->num_wall_elements = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p = map->position(i).cast<double>();
-    const Eigen::Vector3d nr = normals[i].cast<double>();
+    const Eigen::Vector3d nr = map->normal(i).cast<double>();
     Structure s = Structure::kNone;
-    if (result.has_floor && nr.z() >= cos_floor && std::fabs(p.z() - result.floor_height_m) < tol) {
+    if (result->has_floor && nr.z() >= cos_floor && std::fabs(p.z() - result->floor_height_m) < tol) {
       s = Structure::kFloor;
-      ++result.num_floor_elements;
+      ++result->num_floor_elements;
     } else {
-      for (const WallPlane& w : result.walls) {
+      for (const WallPlane& w : result->walls) {
         if (std::fabs(w.SignedDistance(p)) < tol && nr.dot(w.normal) > cos_tag) {
           s = Structure::kWall;
-          ++result.num_wall_elements;
+          ++result->num_wall_elements;
           break;
         }
       }
     }
     map->SetStructure(i, s);
   }
-  return result;
 }
 
 }  // namespace objscan::mapping

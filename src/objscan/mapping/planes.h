@@ -69,6 +69,9 @@ class StructureDetector {
   explicit StructureDetector(const StructureOptions& options = StructureOptions());
   // Detects floor and walls over all elements and rewrites every element's structural tag.
   StructureResult Update(SurfaceMap* map) const;
+  // Rewrites every element's structural tag from already detected planes (much cheaper than Update:
+  // no plane search) and refreshes result's element counts.
+  void TagElements(SurfaceMap* map, StructureResult* result) const;
   const StructureOptions& options() const { return options_; }
 
  private:

@@ -70,38 +70,63 @@ SimilarModel Recognizer::Match(const QueryDescription& query, int entry) const {
   SimilarModel m;
   m.entry = entry;
   m.alignment = AlignToItem(query.keypoints, database_.keypoint_target(entry), options_.alignment);
-  if (m.alignment.ok()) Measure(query, query.keypoints, &m);
+  if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), &m);
   return m;
 }
 
 void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points,
-                         SimilarModel* m) const {
+                         const KdTree3& points_tree, SimilarModel* m) const {
   const AlignmentTarget& target = database_.keypoint_target(m->entry);
-  const Eigen::Affine3f T = m->alignment.T_item_query.cast<float>();
-  std::vector<Eigen::Vector3f> c_in_m(points.size());
-  for (std::size_t i = 0; i < c_in_m.size(); ++i) c_in_m[i] = T * points[i];
-  const KdTree3 c_tree(c_in_m);
-  const double diag = m->alignment.scale * query.diagonal_m;
-  m->objectness = ComputeObjectness(c_in_m, c_tree, target.tree(), diag);
-  m->fit = diag > 0.0 ? std::exp(-std::sqrt(m->objectness.similarity_m2) / diag) : 0.0;
-  m->visible_objectness = m->objectness.objectness;
   const DatabaseEntry& e = database_.entries()[m->entry];
-  if (diag > 0.0 && !query.view_direction.isZero() && e.keypoint_normals.size() == e.keypoints.size()) {
+  const double scale = m->alignment.scale;
+  const double diag = scale * query.diagonal_m;
+  ObjectnessTerms& o = m->objectness;
+  o = ObjectnessTerms();
+  o.diagonal_m = diag;
+  m->fit = 0.0;
+  m->visible_objectness = 0.0;
+  if (points.empty() || target.empty() || !(diag > 0.0)) {
+    m->rank_score = 0.0;
+    return;
+  }
+  // d(c, m): query points mapped into the entry frame, nearest entry keypoint.
+  const Eigen::Affine3f T = m->alignment.T_item_query.cast<float>();
+  double sum = 0.0;
+  for (const auto& p : points) {
+    float d2 = 0.f;
+    target.tree().Nearest(T * p, &d2);
+    sum += d2;
+  }
+  o.similarity_m2 = sum / static_cast<double>(points.size());
+  // d(m, c): entry keypoints mapped into the query frame (distances there are 1/scale of the entry
+  // frame's); each squared distance is kept for the visible term below.
+  const Eigen::Affine3f T_query_item = m->alignment.T_item_query.inverse().cast<float>();
+  const float scale2 = static_cast<float>(scale * scale);
+  const std::vector<Eigen::Vector3f>& model = target.tree().points();
+  std::vector<float> model_d2(model.size());
+  sum = 0.0;
+  for (std::size_t k = 0; k < model.size(); ++k) {
+    float d2 = 0.f;
+    points_tree.Nearest(T_query_item * model[k], &d2);
+    model_d2[k] = scale2 * d2;
+    sum += model_d2[k];
+  }
+  o.completeness_m2 = sum / static_cast<double>(model.size());
+  o.objectness = std::exp(-std::sqrt(o.similarity_m2 + o.completeness_m2) / diag);
+  m->fit = std::exp(-std::sqrt(o.similarity_m2) / diag);
+  m->visible_objectness = o.objectness;
+  if (!query.view_direction.isZero() && e.keypoint_normals.size() == model.size()) {
     const Eigen::Vector3f view_item = (T.linear() * query.view_direction).normalized();
-    double sum = 0.0;
+    double visible_sum = 0.0;
     int n = 0;
-    for (std::size_t k = 0; k < e.keypoints.size(); ++k) {
+    for (std::size_t k = 0; k < model.size(); ++k) {
       if (e.keypoint_normals[k].dot(view_item) <= options_.visible_min_cos) continue;
-      float d2 = 0.f;
-      c_tree.Nearest(e.keypoints[k], &d2);
-      sum += d2;
+      visible_sum += model_d2[k];
       ++n;
     }
-    if (n > 0) {
-      m->visible_objectness = std::exp(-std::sqrt(m->objectness.similarity_m2 + sum / n) / diag);
-    }
+    if (n > 0) m->visible_objectness = std::exp(-std::sqrt(o.similarity_m2 + visible_sum / n) / diag);
   }
-  m->rank_score = m->objectness.objectness;
+  m->rank_score = o.objectness;
 }
 
 void Recognizer::ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const {
@@ -129,6 +154,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
     std::vector<Eigen::Vector3f> subset;
     for (int i : StridedSubset(static_cast<int>(query.keypoints.size()), options_.estimate_points))
       subset.push_back(query.keypoints[i]);
+    const KdTree3 subset_tree(subset);
     std::vector<double> estimate(n, 0.0);
     for (int i = 0; i < n; ++i) {
       const int entry = shortlist[i].item;
@@ -139,7 +165,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
       m.alignment.status = AlignmentStatus::kOk;
       m.alignment.T_item_query = coarse[i].front().T_item_query();
       m.alignment.scale = coarse[i].front().scale;
-      Measure(query, subset, &m);
+      Measure(query, subset, subset_tree, &m);
       ScoreForRanking(shortlist[i], &m);
       estimate[i] = m.rank_score;
     }
@@ -150,6 +176,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
   // more while the category limit leaves M(c) short.
   std::vector<SimilarModel> refined;
   refined.reserve(n);
+  const KdTree3 keypoint_tree(query.keypoints);
   const int first_batch = two_stage ? options_.refine_entries : n;
   for (int r = 0; r < n; ++r) {
     const int i = order[r];
@@ -158,7 +185,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
     const AlignmentTarget& target = database_.keypoint_target(m.entry);
     m.alignment = two_stage ? RefineAlignment(query.keypoints, target, coarse[i], ao)
                             : AlignToItem(query.keypoints, target, ao);
-    if (m.alignment.ok()) Measure(query, query.keypoints, &m);
+    if (m.alignment.ok()) Measure(query, query.keypoints, keypoint_tree, &m);
     ScoreForRanking(shortlist[i], &m);
     refined.push_back(std::move(m));
     if (r + 1 < first_batch) continue;

@@ -107,8 +107,11 @@ class Recognizer {
 
  private:
   // Objectness, fit and visible objectness of `points` (the query's keypoints, or a subset of them)
-  // under m->alignment against m->entry; m->rank_score = objectness.
-  void Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points, SimilarModel* m) const;
+  // under m->alignment against m->entry; m->rank_score = objectness. `points_tree` is a kd-tree over
+  // `points` in the query frame, built once per query: the completeness term looks the entry's
+  // keypoints up in it after mapping them into the query frame, instead of a tree per entry.
+  void Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points, const KdTree3& points_tree,
+               SimilarModel* m) const;
   void ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const;
 
   const ModelDatabase& database_;

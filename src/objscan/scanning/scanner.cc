@@ -284,7 +284,7 @@ struct Scanner::State {
   // --- analysis: C, R, complete / noise objects ---------------------------------------------------
   void Analyze(StepRecord* step) {
     Stopwatch w;
-    structure = structure_detector.Update(&surface);
+    UpdateStructure();
     const segmentation::ComponentGraph& graph = segmenter.Components(&surface);
     graph_cache = &graph;
     Charge(step, "segment", w.ElapsedMs());
@@ -338,6 +338,16 @@ struct Scanner::State {
         continue;
       }
       objects.push_back(static_cast<int>(k));
+    }
+  }
+
+  void UpdateStructure() {
+    const double n = static_cast<double>(surface.size());
+    if (structure_elements == 0 || n > (1.0 + config.scanner.structure_redetect_growth) * structure_elements) {
+      structure = structure_detector.Update(&surface);
+      structure_elements = n;
+    } else {
+      structure_detector.TagElements(&surface, &structure);
     }
   }
 
@@ -578,6 +588,7 @@ struct Scanner::State {
   segmentation::IncrementalSegmenter segmenter;
   mapping::StructureDetector structure_detector;
   mapping::StructureResult structure;
+  double structure_elements = 0;  // map size at the last full floor/wall search
   recognition::Recognizer recognizer;
   recognition::RecognizerComponentMatcher matcher;
   segmentation::PostSegmenter post_segmenter;
@@ -652,7 +663,7 @@ bool Scanner::Step() {
     if (object_guidance) {
       s.Analyze(&step);
     } else {
-      s.structure = s.structure_detector.Update(&s.surface);
+      s.UpdateStructure();
     }
     if (!object_guidance || !s.ScanObjectStep(&step)) {
       Termination t = s.ExploreStep(&step);

@@ -40,6 +40,9 @@ struct ScannerOptions {
   // bridge two objects in the graph cut. 1.0 or more = off (the paper's behaviour).
   double structure_residue_fraction = 0.8;
   double structure_residue_distance_m = 0.04;
+  // Floor and walls are searched again only when the map grew by this share since the last search;
+  // in between, new elements are tagged with the known planes (0 = search every step).
+  double structure_redetect_growth = 0.1;
   int threads = 0;                     // 0 = hardware concurrency; results do not depend on it
 
   template <class V>
@@ -61,6 +64,7 @@ struct ScannerOptions {
     v("min_view_separation_deg", min_view_separation_deg);
     v("structure_residue_fraction", structure_residue_fraction);
     v("structure_residue_distance_m", structure_residue_distance_m);
+    v("structure_redetect_growth", structure_redetect_growth);
     v("threads", threads);
   }
   void Validate() const {
@@ -80,6 +84,7 @@ struct ScannerOptions {
     config::RequireInRange("scanner.min_view_separation_deg", min_view_separation_deg, 0.0, 180.0);
     config::RequireNonNegative("scanner.structure_residue_fraction", structure_residue_fraction);
     config::RequireNonNegative("scanner.structure_residue_distance_m", structure_residue_distance_m);
+    config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }
 };
