@@ -86,6 +86,7 @@ int RunScan(const RunArgs& args) {
   scanning::Scanner scanner(config, scene, database, args.seed);
   eval::RunEvaluator evaluator(scene, config, std::vector<world::Category>(known.begin(), known.end()));
   scanner.set_frame_observer([&evaluator](const sim::DepthFrame& frame) { evaluator.ObserveFrame(frame); });
+  scanner.set_analysis_observer([&evaluator](const scanning::Scanner& s) { evaluator.ObserveAnalysis(s); });
   const scanning::RunRecord& record = scanner.Run(args.quiet ? nullptr : TerminalProgress("scanning"));
   FinishProgress();
   const eval::RunMetrics metrics = evaluator.Evaluate(scanner, record);

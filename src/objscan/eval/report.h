@@ -42,6 +42,7 @@ struct RunSummary {
   double nbv_per_object = 0;
   std::map<std::string, CategoryCounts> per_category;
   std::vector<CoveragePoint> coverage;
+  std::vector<std::pair<int, double>> rand_index_per_view;  // (views seen, Rand Index) per analysis
   RunTiming timing_s;
 };
 

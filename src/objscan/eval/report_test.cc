@@ -132,6 +132,18 @@ TEST(ParseRunJsonTest, ReadsMetricsTimingAndCoverageWithTravelAndNboSwitches) {
   EXPECT_THROW(ParseRunJson("{\"scene\": 1}", "x", "ours", "bad.json"), InputError);
 }
 
+TEST(ParseRunJsonTest, ReadsRandIndexPerView) {
+  Fixture f;
+  nlohmann::json j = nlohmann::json::parse(f.Json());
+  j["metrics"]["rand_index_per_view"] = {{16, 0.8}, {17, 0.85}, {20, 0.9}};
+  const RunSummary r = ParseRunJson(j.dump(), "scene-a", "ours", "fixture");
+  ASSERT_EQ(r.rand_index_per_view.size(), 3u);
+  EXPECT_EQ(r.rand_index_per_view[1].first, 17);
+  EXPECT_DOUBLE_EQ(r.rand_index_per_view[2].second, 0.9);
+  // Old run.json files without it parse with an empty curve.
+  EXPECT_TRUE(ParseRunJson(f.Json(), "scene-a", "ours", "fixture").rand_index_per_view.empty());
+}
+
 TEST(ReportTest, MeansPerSceneCategoryAndSumsPerObjectCategory) {
   Fixture a, b, c;
   b.spec = "procedural:bedroom:2";

@@ -84,6 +84,39 @@ struct RunEvaluator::Impl {
   std::unique_ptr<CoverageAccumulator> coverage;
   std::vector<std::vector<int>> seen_per_view;
   std::vector<Eigen::Vector3d> camera_per_view;
+  std::vector<std::pair<int, double>> rand_index_per_view;
+
+  // Ground truth set: every non-structural object (instances of structure listed apart).
+  std::vector<GroundTruthInstance> Truth(std::vector<std::int32_t>* structural) const {
+    std::vector<GroundTruthInstance> truth;
+    for (const auto& o : scene.objects()) {
+      if (o.IsStructural()) {
+        if (structural) structural->push_back(o.instance_id);
+        continue;
+      }
+      GroundTruthInstance g;
+      g.instance_id = o.instance_id;
+      g.category = o.category;
+      g.on_floor = scene.ObjectBounds(o).min_m.z() < kOnFloorMaxZ_m;
+      truth.push_back(g);
+    }
+    return truth;
+  }
+
+  // Rand Index over the reconstructed non-structural points: points outside every object keep
+  // their pre-segment (negated, so ids never collide).
+  double RandIndexOf(const mapping::SurfaceMap& map, const std::vector<int>& object_id,
+                     const std::vector<GroundTruthInstance>& truth) const {
+    std::vector<std::int32_t> segment, instance;
+    segment.reserve(map.size());
+    instance.reserve(map.size());
+    for (std::size_t e = 0; e < map.size(); ++e) {
+      if (map.structure(e) != mapping::Structure::kNone) continue;
+      segment.push_back(object_id[e] >= 0 ? object_id[e] : -1 - map.label(e));
+      instance.push_back(map.gt_instance(e));
+    }
+    return NonStructuralRandIndex(segment, instance, truth);
+  }
 
   Impl(const world::Scene& s, const scanning::SystemConfig& c, std::vector<world::Category> cats)
       : scene(s), config(c), database_categories(std::move(cats)), voxel_m(c.eval.coverage_voxel_size_m) {
@@ -150,23 +183,19 @@ void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame) {
   m.camera_per_view.push_back(frame.T_world_camera.translation());
 }
 
+void RunEvaluator::ObserveAnalysis(const scanning::Scanner& scanner) {
+  Impl& m = *impl_;
+  std::vector<int> object_id;
+  scanner.AnalysisElementObjects(&object_id);
+  const double ri = m.RandIndexOf(scanner.surface_map(), object_id, m.Truth(nullptr));
+  m.rand_index_per_view.emplace_back(scanner.analysis_views(), ri);
+}
+
 RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const {
   const Impl& m = *impl_;
   RunMetrics out;
-  // Ground truth set.
-  std::vector<GroundTruthInstance> truth;
   std::vector<std::int32_t> structural;
-  for (const auto& o : m.scene.objects()) {
-    if (o.IsStructural()) {
-      structural.push_back(o.instance_id);
-      continue;
-    }
-    GroundTruthInstance g;
-    g.instance_id = o.instance_id;
-    g.category = o.category;
-    g.on_floor = m.scene.ObjectBounds(o).min_m.z() < kOnFloorMaxZ_m;
-    truth.push_back(g);
-  }
+  const std::vector<GroundTruthInstance> truth = m.Truth(&structural);
   // Output objects: complete ones, and incomplete ones recognised with enough objectness.
   std::vector<OutputObject> outputs;
   for (const auto& o : record.objects) {
@@ -189,16 +218,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   const mapping::SurfaceMap& map = scanner.surface_map();
   std::vector<int> object_id, category_id;
   scanner.ElementObjects(&object_id, &category_id);
-  std::vector<std::int32_t> segment, instance;
-  segment.reserve(map.size());
-  instance.reserve(map.size());
-  for (std::size_t e = 0; e < map.size(); ++e) {
-    if (map.structure(e) != mapping::Structure::kNone) continue;
-    // Points outside every object keep their pre-segment (negated, so ids never collide).
-    segment.push_back(object_id[e] >= 0 ? object_id[e] : -1 - map.label(e));
-    instance.push_back(map.gt_instance(e));
-  }
-  out.rand_index = NonStructuralRandIndex(segment, instance, truth);
+  out.rand_index = m.RandIndexOf(map, object_id, truth);
   const auto preseg = segmentation::EvaluatePresegmentation(map, structural);
   out.rand_index_preseg = preseg.rand_index_preseg;
   out.preseg_purity = preseg.preseg_purity;
@@ -217,6 +237,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
     const CoverageResult c = curve.Result(detected);
     out.coverage_per_view.emplace_back(c.rate, c.quality);
   }
+  out.rand_index_per_view = m.rand_index_per_view;
   out.travel_m = record.travel_m;
   out.views = record.views;
   out.nbo_count = record.nbo_count;

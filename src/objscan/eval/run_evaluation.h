@@ -31,6 +31,8 @@ struct RunMetrics {
   std::array<RecognitionCounts, world::kNumCategories> per_category{};
   // Coverage after each view (rate, quality), for Fig. 11-style curves.
   std::vector<std::pair<double, double>> coverage_per_view;
+  // Rand Index of the segmentation after each analysis: (views seen, rand index), for Fig. 10b.
+  std::vector<std::pair<int, double>> rand_index_per_view;
 };
 
 class RunEvaluator {
@@ -43,6 +45,8 @@ class RunEvaluator {
 
   // Feeds one frame (call from the scanner's frame observer).
   void ObserveFrame(const sim::DepthFrame& frame);
+  // Scores the segmentation of one analysis (call from the scanner's analysis observer).
+  void ObserveAnalysis(const scanning::Scanner& scanner);
 
   // Scores the finished run. Also fills record->objects[i].gt_instance when it was unknown.
   RunMetrics Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const;

@@ -117,6 +117,9 @@ std::string RunJson(const RunOutputInputs& in) {
     Json curve = Json::array();
     for (const auto& [rate, quality] : m.coverage_per_view) curve.push_back({rate, quality});
     metrics["coverage_per_view"] = curve;
+    Json ri_curve = Json::array();
+    for (const auto& [views, ri] : m.rand_index_per_view) ri_curve.push_back({views, ri});
+    metrics["rand_index_per_view"] = ri_curve;
     j["metrics"] = metrics;
   }
   j["timing_s"] = Json{{"total", r.timing_s.total},         {"sense", r.timing_s.sense},

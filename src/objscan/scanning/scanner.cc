@@ -339,6 +339,8 @@ struct Scanner::State {
       }
       objects.push_back(static_cast<int>(k));
     }
+    analysis_views = record.views;
+    if (analysis_observer) analysis_observer(*owner);
   }
 
   void UpdateStructure() {
@@ -599,6 +601,9 @@ struct Scanner::State {
   RobotOccupancy robot_occupancy;
   sim::Navigator navigator;
   FrameObserver observer;
+  AnalysisObserver analysis_observer;
+  const Scanner* owner = nullptr;
+  int analysis_views = 0;
   RunRecord record;
 
   const segmentation::ComponentGraph* graph_cache = nullptr;
@@ -628,11 +633,32 @@ Scanner::Scanner(const SystemConfig& config, const world::Scene& scene, const re
   if (!database.finalized()) throw InputError("model database is not finalized");
   if (database.models().empty()) throw InputError("model database is empty");
   state_ = std::make_unique<State>(config, scene, database, seed);
+  state_->owner = this;
 }
 
 Scanner::~Scanner() = default;
 
 void Scanner::set_frame_observer(FrameObserver observer) { state_->observer = std::move(observer); }
+void Scanner::set_analysis_observer(AnalysisObserver observer) { state_->analysis_observer = std::move(observer); }
+int Scanner::analysis_views() const { return state_->analysis_views; }
+
+void Scanner::AnalysisElementObjects(std::vector<int>* object_id) const {
+  const State& s = *state_;
+  std::unordered_map<std::int32_t, int> object_of_label;
+  for (const auto& c : s.completed) {
+    for (auto l : c.labels) object_of_label[l] = c.id;
+  }
+  for (int k : s.objects) {
+    const auto& r = s.post.objects[k];
+    for (auto l : r.component_ids) object_of_label[l] = r.component_ids.front();
+  }
+  object_id->assign(s.surface.size(), -1);
+  for (std::size_t e = 0; e < s.surface.size(); ++e) {
+    if (s.surface.structure(e) != mapping::Structure::kNone) continue;
+    auto it = object_of_label.find(s.surface.label(e));
+    if (it != object_of_label.end()) (*object_id)[e] = it->second;
+  }
+}
 
 const RunRecord& Scanner::record() const { return state_->record; }
 const mapping::SurfaceMap& Scanner::surface_map() const { return state_->surface; }

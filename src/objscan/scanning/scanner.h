@@ -20,6 +20,9 @@ namespace objscan::scanning {
 
 // Called with every frame the robot takes (e.g. to accumulate ground-truth coverage for evaluation).
 using FrameObserver = std::function<void(const sim::DepthFrame& frame)>;
+class Scanner;
+// Called after every analysis of the map (post-segmentation), e.g. to score the segmentation over views.
+using AnalysisObserver = std::function<void(const Scanner& scanner)>;
 
 class Scanner {
  public:
@@ -32,6 +35,7 @@ class Scanner {
   Scanner& operator=(const Scanner&) = delete;
 
   void set_frame_observer(FrameObserver observer);
+  void set_analysis_observer(AnalysisObserver observer);
 
   // One iteration; returns false once terminated.
   bool Step();
@@ -42,6 +46,10 @@ class Scanner {
   const mapping::SurfaceMap& surface_map() const;
   // Per map element: the output object id (-1 none) and category id (-1 unrecognized / structural).
   void ElementObjects(std::vector<int>* object_id, std::vector<int>* category_id) const;
+  // Per map element: the object id of the latest analysis (completed objects and the current
+  // post-segmented objects; -1 none), and the number of views that analysis saw.
+  void AnalysisElementObjects(std::vector<int>* object_id) const;
+  int analysis_views() const;
   // The robot's navigation map as a PNG (what the method believes, not ground truth): free white,
   // occupied black, unknown grey, cells the robot's centre cannot take (inflation) tinted red, its
   // path blue. Throws InputError naming the path when it cannot be written.
