@@ -1,10 +1,12 @@
 // Benchmarks of recognition (paper §4.2): describing a query, retrieving M(c) from databases of
 // 100, 400 and 1600 entries (the bag-of-words stage alone and the whole retrieval with alignment and
-// objectness of the shortlist), aligning, objectness, Lloyd keypoints and loading a database.
+// objectness of the shortlist), aligning, objectness, Lloyd keypoints and loading a database; with
+// OBJSCAN_BENCH_DB set, describing and retrieving eval-like queries against that database.
 // The larger databases replicate a database of analytic shapes with perturbed copies (histograms
 // reweighted and thinned, keypoints scaled), so posting lists grow with the item count as they would.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
 #include <map>
@@ -16,6 +18,8 @@
 #include "objscan/recognition/objectness.h"
 #include "objscan/recognition/recognizer.h"
 #include "objscan/recognition/test_database.h"
+#include "objscan/recognition/virtual_scan.h"
+#include "objscan/world/procedural/procedural.h"
 
 namespace {
 
@@ -148,6 +152,19 @@ void BM_Align(benchmark::State& state) {
 }
 BENCHMARK(BM_Align)->Unit(benchmark::kMillisecond);
 
+// The coarse stage alone on a database entry: arg 1 scores the initial hypotheses by the entry's
+// distance grid (the default), arg 0 by kd-tree searches.
+void BM_CoarseAlign(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  const Recognizer recognizer(db, RecognitionOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  const AlignmentTarget& target = db.keypoint_target(db.models()[0].full_entry);
+  AlignmentOptions options;
+  options.grid_initial_scoring = state.range(0) == 1;
+  for (auto _ : state) benchmark::DoNotOptimize(CoarseAlign(q.keypoints, target, options));
+}
+BENCHMARK(BM_CoarseAlign)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 // Eq. (1) for n_p = 500 keypoints on both sides (kd-tree nearest neighbours both ways).
 void BM_Objectness(benchmark::State& state) {
   const ModelDatabase& db = BaseDatabase();
@@ -182,15 +199,69 @@ BENCHMARK(BM_LoadDatabase)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
+// Eval-like queries against a real database (set OBJSCAN_BENCH_DB to its path, e.g. the default
+// procedural database; skipped otherwise): one noisy single view of an unseen procedural model per
+// furniture category, randomly placed; each iteration describes (or retrieves) the next query.
 namespace {
-void BM_TmpCoarse(benchmark::State& state) {
-  const ModelDatabase& db = BaseDatabase();
-  const Recognizer recognizer(db, RecognitionOptions());
-  const QueryDescription q = recognizer.Describe(ChairQuery());
-  const AlignmentTarget& target = db.keypoint_target(db.models()[0].full_entry);
-  AlignmentOptions options;
-  if (state.range(0) == 1) { options.coarse_keep = 1; options.coarse_iterations = 0; }
-  for (auto _ : state) benchmark::DoNotOptimize(CoarseAlign(q.keypoints, target, options));
+
+struct RealQueries {
+  std::unique_ptr<ModelDatabase> db;
+  std::vector<geometry::PointCloud> clouds;
+  std::vector<QueryDescription> described;
+};
+
+const RealQueries* LoadRealQueries() {
+  static const RealQueries* queries = [] {
+    const char* path = std::getenv("OBJSCAN_BENCH_DB");
+    if (!path) return static_cast<RealQueries*>(nullptr);
+    auto* q = new RealQueries;
+    q->db = std::make_unique<ModelDatabase>(ModelDatabase::Load(path));
+    const VirtualScanOptions scan;
+    Rng rng(11);
+    for (world::Category c : world::procedural::FurnitureCategories()) {
+      geometry::TriangleMesh mesh = NormalizeModel(
+          world::procedural::GenerateFurniture(c, world::procedural::DatabaseModelSeed(2000000 + q->clouds.size())).mesh,
+          1.0);
+      Eigen::Affine3d T = Eigen::Affine3d::Identity();
+      T.translate(Eigen::Vector3d(rng.Uniform(-3, 3), rng.Uniform(-3, 3), 0.0));
+      T.rotate(Eigen::AngleAxisd(rng.Uniform(-M_PI, M_PI), Eigen::Vector3d::UnitZ()));
+      mesh = geometry::Transformed(mesh, T);
+      const geometry::Pose3 view =
+          ViewFrom(geometry::Bounds(mesh), rng.Uniform(-M_PI, M_PI), geometry::DegToRad(rng.Uniform(15, 45)), scan);
+      q->clouds.push_back(ScanModel(mesh, {view}, scan, true, &rng).surface);
+    }
+    const Recognizer recognizer(*q->db, RecognitionOptions());
+    for (const auto& cloud : q->clouds) q->described.push_back(recognizer.Describe(cloud));
+    return q;
+  }();
+  return queries;
 }
-BENCHMARK(BM_TmpCoarse)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+void BM_RealDescribe(benchmark::State& state) {
+  const RealQueries* q = LoadRealQueries();
+  if (!q) {
+    state.SkipWithError("OBJSCAN_BENCH_DB not set");
+    return;
+  }
+  const Recognizer recognizer(*q->db, RecognitionOptions());
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(recognizer.Describe(q->clouds[i++ % q->clouds.size()]));
 }
+BENCHMARK(BM_RealDescribe)->Unit(benchmark::kMillisecond);
+
+// arg 0: full models (as db eval), 1: all entries (as component queries).
+void BM_RealRetrieve(benchmark::State& state) {
+  const RealQueries* q = LoadRealQueries();
+  if (!q) {
+    state.SkipWithError("OBJSCAN_BENCH_DB not set");
+    return;
+  }
+  const Recognizer recognizer(*q->db, RecognitionOptions());
+  const RetrievalScope scope = state.range(0) == 0 ? RetrievalScope::kFullModels : RetrievalScope::kAllEntries;
+  for (const auto& d : q->described) recognizer.Retrieve(d, scope);  // warm the lazily built grids
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(recognizer.Retrieve(q->described[i++ % q->described.size()], scope));
+}
+BENCHMARK(BM_RealRetrieve)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 namespace objscan::recognition {
 
@@ -33,6 +34,28 @@ AlignmentTarget::AlignmentTarget(const std::vector<Eigen::Vector3f>& item_points
     sum += p.cast<double>();
   }
   if (!item_points.empty()) centroid_ = sum / static_cast<double>(item_points.size());
+}
+
+struct AlignmentTarget::LazyGrid {
+  float truncation_m = 0.f;
+  int max_vertices = 0;
+  float min_spacing_m = 0.f;
+  std::once_flag once;
+  DistanceGrid grid;
+};
+
+void AlignmentTarget::EnableDistanceGrid(float truncation_m, int max_vertices, float min_spacing_m) {
+  grid_ = std::make_shared<LazyGrid>();
+  grid_->truncation_m = truncation_m;
+  grid_->max_vertices = max_vertices;
+  grid_->min_spacing_m = min_spacing_m;
+}
+
+const DistanceGrid* AlignmentTarget::distance_grid() const {
+  if (!grid_) return nullptr;
+  LazyGrid& g = *grid_;
+  std::call_once(g.once, [&] { g.grid = DistanceGrid(tree_.points(), g.truncation_m, g.max_vertices, g.min_spacing_m); });
+  return &g.grid;
 }
 
 namespace {
@@ -73,6 +96,19 @@ class Icp {
     return Correspond(subset, x, truncation_d2);
   }
 
+  // The same from the target's distance grid (interpolated distances; no correspondences).
+  double GridCost(const std::vector<int>& subset, const Similarity4& x, float truncation_d2) {
+    const Eigen::Matrix3f M = (x.scale * x.R()).cast<float>();
+    const Eigen::Vector3f t = x.t.cast<float>();
+    const DistanceGrid& grid = *target_.distance_grid();
+    const std::size_t n = subset.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const float d = grid.Distance(M * query_[subset[k]] + t);
+      d2_[k] = std::min(d * d, truncation_d2);
+    }
+    return TrimmedMean(n);
+  }
+
   // Runs `iterations` trimmed ICP rounds on the points `subset` (indices into query), updating *h.
   void Run(const std::vector<int>& subset, int iterations, Hypothesis* h) {
     for (int it = 0; it <= iterations; ++it) {
@@ -87,12 +123,19 @@ class Icp {
     }
   }
 
-  // Share of the subset within `distance` of the item under x; *cost gets the trimmed cost.
-  double InlierFraction(const std::vector<int>& subset, const Similarity4& x, double distance, double* cost) {
+  // Share of the subset within `distance` of the item under x; *cost gets the trimmed cost and
+  // *mean_d2 the untrimmed mean squared distance.
+  double InlierFraction(const std::vector<int>& subset, const Similarity4& x, double distance, double* cost,
+                        double* mean_d2) {
     *cost = Correspond(subset, x);
     const double d2max = distance * distance;
     int inliers = 0;
-    for (std::size_t k = 0; k < subset.size(); ++k) inliers += d2_[k] <= d2max ? 1 : 0;
+    double sum = 0.0;
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      inliers += d2_[k] <= d2max ? 1 : 0;
+      sum += d2_[k];
+    }
+    *mean_d2 = subset.empty() ? 0.0 : sum / static_cast<double>(subset.size());
     return subset.empty() ? 0.0 : static_cast<double>(inliers) / subset.size();
   }
 
@@ -127,8 +170,13 @@ class Icp {
       } else {
         d2_[k] = truncation_d2;
       }
-      order_[k] = static_cast<int>(k);
     }
+    return TrimmedMean(n);
+  }
+
+  // Trimmed mean of d2_[0, n); leaves the kept indices as order_[0, kept_).
+  double TrimmedMean(std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) order_[k] = static_cast<int>(k);
     kept_ = std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(options_.trim_fraction * n)));
     kept_ = std::min(kept_, n);
     std::nth_element(order_.begin(), order_.begin() + (kept_ - 1), order_.begin() + n,
@@ -250,6 +298,11 @@ std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>&
   const float truncation_d2 = options.initial_truncation_m > 0.0
                                   ? static_cast<float>(options.initial_truncation_m * options.initial_truncation_m)
                                   : std::numeric_limits<float>::infinity();
+  const DistanceGrid* grid = options.grid_initial_scoring && options.initial_truncation_m > 0.0
+                                 ? target.distance_grid()
+                                 : nullptr;
+  const bool use_grid =
+      grid != nullptr && !grid->empty() && options.initial_truncation_m <= grid->truncation_m() + 1e-6;
   const geometry::Aabb3& tb = target.bounds();
   double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
   for (const auto& p : query_points) {
@@ -280,7 +333,7 @@ std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>&
       Hypothesis h;
       h.x = x;
       h.x.t = Eigen::Vector3d(t_xy.x(), t_xy.y(), tb.min_m.z() - qb.min_m.z());
-      h.cost = icp.TruncatedCost(initial, h.x, truncation_d2);
+      h.cost = use_grid ? icp.GridCost(initial, h.x, truncation_d2) : icp.TruncatedCost(initial, h.x, truncation_d2);
       hypotheses.push_back(h);
     }
   }
@@ -323,7 +376,8 @@ AlignmentResult RefineAlignment(const std::vector<Eigen::Vector3f>& query_points
   result.scale = best.x.scale;
   result.T_item_query = best.x.Affine();
   double cost_all = 0.0;
-  result.inlier_fraction = icp.InlierFraction(StridedSubset(n, 0), best.x, options.inlier_distance_m, &cost_all);
+  result.inlier_fraction = icp.InlierFraction(StridedSubset(n, 0), best.x, options.inlier_distance_m, &cost_all,
+                                              &result.mean_squared_distance_m2);
   result.trimmed_rms_m = std::sqrt(cost_all);
   return result;
 }

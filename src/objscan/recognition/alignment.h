@@ -5,10 +5,12 @@
 // the query to the item, so a partial query is matched against the part of the item it covers.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <vector>
 
 #include "objscan/common/config.h"
 #include "objscan/geometry/aabb.h"
+#include "objscan/recognition/distance_grid.h"
 #include "objscan/recognition/kd_tree.h"
 
 namespace objscan::recognition {
@@ -20,6 +22,9 @@ struct AlignmentOptions {
   // Initial hypotheses are scored with distances truncated here (0 = exact): a far point then costs
   // a few kd-tree nodes instead of a long search, and one stray part cannot dominate the score.
   double initial_truncation_m = 0.15;
+  // Score the initial hypotheses by the target's distance grid (when it has one reaching at least
+  // initial_truncation_m) instead of kd-tree searches: interpolated, so approximate, and far cheaper.
+  bool grid_initial_scoring = true;
   int coarse_points = 48;             // query points used in the coarse ICP rounds
   int coarse_keep = 4;                 // hypotheses (by initial cost) that get coarse ICP rounds
   int coarse_iterations = 3;          // ICP rounds per kept hypothesis
@@ -39,6 +44,7 @@ struct AlignmentOptions {
     v("side_translation_inits", side_translation_inits);
     v("initial_points", initial_points);
     v("initial_truncation_m", initial_truncation_m);
+    v("grid_initial_scoring", grid_initial_scoring);
     v("coarse_points", coarse_points);
     v("coarse_keep", coarse_keep);
     v("coarse_iterations", coarse_iterations);
@@ -64,9 +70,17 @@ class AlignmentTarget {
   const geometry::Aabb3& bounds() const { return bounds_; }
   const Eigen::Vector3d& centroid() const { return centroid_; }
   bool empty() const { return tree_.empty(); }
+  // Optional truncated distance field of the item points (see DistanceGrid) for scoring the initial
+  // hypotheses, built on its first use (thread-safe): a database with thousands of entries then
+  // loads as fast as before and builds only the grids its queries reach.
+  void EnableDistanceGrid(float truncation_m, int max_vertices, float min_spacing_m);
+  // nullptr when not enabled.
+  const DistanceGrid* distance_grid() const;
 
  private:
+  struct LazyGrid;
   KdTree3 tree_;
+  std::shared_ptr<LazyGrid> grid_;  // shared by copies; immutable once built
   geometry::Aabb3 bounds_;
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
 };
@@ -85,6 +99,9 @@ struct AlignmentResult {
   double scale = 1.0;
   double trimmed_rms_m = 0.0;     // RMS distance of the kept correspondences
   double inlier_fraction = 0.0;   // share of query points within inlier_distance_m of the item
+  // Mean over all query points of the squared distance to the nearest item point (untrimmed): the
+  // similarity term d(c, m) of the objectness, measured on the way.
+  double mean_squared_distance_m2 = 0.0;
   bool ok() const { return status == AlignmentStatus::kOk; }
 };
 

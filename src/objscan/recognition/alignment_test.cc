@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 #include "objscan/geometry/pose.h"
 #include "objscan/recognition/keypoints.h"
@@ -43,6 +44,38 @@ TEST(AlignmentTest, RecoversKnownYawAndOffsetOfAFullObject) {
     T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
     T.translation() = offset;
     // Query: an independent, coarser sampling of the same surface, moved.
+    std::vector<Eigen::Vector3f> resampled, n2;
+    testing::ChairLike(0.013, &resampled, &n2);
+    std::vector<Eigen::Vector3f> query;
+    for (const auto& p : Keypoints(resampled, 3)) query.push_back((T * p.cast<double>()).cast<float>());
+    SCOPED_TRACE(yaw_deg);
+    ExpectRecovers(AlignToItem(query, target, options), yaw, offset);
+  }
+}
+
+// With the item's distance grid scoring the initial hypotheses (as database entries have it), on
+// keypoints as the database stores them; the grid is built once, on first use.
+TEST(AlignmentTest, GridScoredInitialHypothesesRecoverKnownYawAndOffset) {
+  std::vector<Eigen::Vector3f> chair, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  AlignmentTarget target(Keypoints(chair, 1));
+  EXPECT_EQ(target.distance_grid(), nullptr);
+  target.EnableDistanceGrid(0.15f, 16384, 0.025f);
+  const DistanceGrid* grid = nullptr;
+  std::thread other([&] { grid = target.distance_grid(); });
+  const DistanceGrid* mine = target.distance_grid();
+  other.join();
+  ASSERT_NE(mine, nullptr);
+  EXPECT_EQ(mine, grid);
+  EXPECT_FALSE(mine->empty());
+  const AlignmentOptions options;
+  ASSERT_TRUE(options.grid_initial_scoring);
+  for (double yaw_deg : {37.0, 143.0, -101.0}) {
+    const double yaw = geometry::DegToRad(yaw_deg);
+    const Eigen::Vector3d offset(1.7, -2.3, 0.05);
+    Eigen::Affine3d T = Eigen::Affine3d::Identity();
+    T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+    T.translation() = offset;
     std::vector<Eigen::Vector3f> resampled, n2;
     testing::ChairLike(0.013, &resampled, &n2);
     std::vector<Eigen::Vector3f> query;

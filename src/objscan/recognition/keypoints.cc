@@ -1,6 +1,7 @@
 #include "objscan/recognition/keypoints.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <unordered_set>
@@ -36,6 +37,86 @@ std::vector<int> VoxelThin(const std::vector<Eigen::Vector3f>& points, double vo
   return kept;
 }
 
+namespace {
+
+constexpr int kNotFound = -2;
+constexpr int kMaxShells = 6;
+
+// Points in a dense grid of cells (empty when that would be too sparse), for nearest-point searches
+// shell by shell around the query's cell.
+class ShellGrid {
+ public:
+  ShellGrid(const std::vector<Eigen::Vector3f>& points, float cell_m) : points_(points), cell_m_(cell_m) {
+    const int n = static_cast<int>(points.size());
+    if (n == 0) return;
+    const float inv = 1.f / cell_m;
+    std::vector<geometry::VoxelKey> keys(n);
+    lo_ = hi_ = geometry::KeyOf(points[0], inv);
+    for (int i = 0; i < n; ++i) {
+      keys[i] = geometry::KeyOf(points[i], inv);
+      lo_ = {std::min(lo_.x, keys[i].x), std::min(lo_.y, keys[i].y), std::min(lo_.z, keys[i].z)};
+      hi_ = {std::max(hi_.x, keys[i].x), std::max(hi_.y, keys[i].y), std::max(hi_.z, keys[i].z)};
+    }
+    nx_ = hi_.x - lo_.x + 1;
+    ny_ = hi_.y - lo_.y + 1;
+    nz_ = hi_.z - lo_.z + 1;
+    const long cells = static_cast<long>(nx_) * ny_ * nz_;
+    if (cells > 8L * n + 65536) return;  // too sparse: every search falls back
+    start_.assign(cells + 1, 0);
+    for (const auto& k : keys) ++start_[Linear(k.x, k.y, k.z) + 1];
+    for (long c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+    sorted_.resize(n);
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (int i = 0; i < n; ++i) sorted_[fill[Linear(keys[i].x, keys[i].y, keys[i].z)]++] = i;
+  }
+
+  // The nearest point with !used[i]; kNotFound when none is certain within max_shells shells.
+  int NearestUnused(const Eigen::Vector3f& q, const std::vector<char>& used, int max_shells) const {
+    if (start_.empty()) return kNotFound;
+    const geometry::VoxelKey c = geometry::KeyOf(q, 1.f / cell_m_);
+    int best = -1;
+    float best_d2 = std::numeric_limits<float>::infinity();
+    for (int r = 0; r <= max_shells; ++r) {
+      for (int x = c.x - r; x <= c.x + r; ++x) {
+        if (x < lo_.x || x > hi_.x) continue;
+        for (int y = c.y - r; y <= c.y + r; ++y) {
+          if (y < lo_.y || y > hi_.y) continue;
+          const bool x_or_y_on_shell = x == c.x - r || x == c.x + r || y == c.y - r || y == c.y + r;
+          for (int z = c.z - r; z <= c.z + r; z += (x_or_y_on_shell || r == 0) ? 1 : 2 * r) {
+            if (z < lo_.z || z > hi_.z) continue;
+            const int cell = Linear(x, y, z);
+            for (int s = start_[cell]; s < start_[cell + 1]; ++s) {
+              const int i = sorted_[s];
+              if (used[i]) continue;
+              const float d2 = (points_[i] - q).squaredNorm();
+              if (d2 < best_d2) {
+                best_d2 = d2;
+                best = i;
+              }
+            }
+          }
+        }
+      }
+      // Every point outside shells 0..r is at least r cells away from q.
+      const float reach = r * cell_m_;
+      if (best >= 0 && best_d2 < reach * reach) return best;
+    }
+    return kNotFound;
+  }
+
+ private:
+  int Linear(int x, int y, int z) const { return ((x - lo_.x) * ny_ + (y - lo_.y)) * nz_ + (z - lo_.z); }
+
+  const std::vector<Eigen::Vector3f>& points_;
+  float cell_m_;
+  geometry::VoxelKey lo_, hi_;
+  int nx_ = 0, ny_ = 0, nz_ = 0;
+  std::vector<int> start_;
+  std::vector<int> sorted_;
+};
+
+}  // namespace
+
 std::vector<int> SampleKeypointsLloyd(const std::vector<Eigen::Vector3f>& points, const KeypointOptions& options,
                                       Rng* rng) {
   std::vector<int> candidates = VoxelThin(points, options.density_voxel_m);
@@ -56,36 +137,47 @@ std::vector<int> SampleKeypointsLloyd(const std::vector<Eigen::Vector3f>& points
   std::vector<Eigen::Vector3f> pts(n);
   for (int i = 0; i < n; ++i) pts[i] = points[relax[i]];
 
-  // Farthest-point initialisation from a seeded start.
+  // Farthest-point initialisation from a seeded start. Coordinates as separate arrays so the
+  // distance update and the maximum vectorise; the first index holding the maximum is the one a
+  // sequential scan picks.
+  Eigen::ArrayXf xs(n), ys(n), zs(n);
+  for (int i = 0; i < n; ++i) {
+    xs[i] = pts[i].x();
+    ys[i] = pts[i].y();
+    zs[i] = pts[i].z();
+  }
   std::vector<Eigen::Vector3f> centres;
   centres.reserve(n_keypoints);
-  std::vector<float> d2(n, std::numeric_limits<float>::infinity());
+  Eigen::ArrayXf d2 = Eigen::ArrayXf::Constant(n, std::numeric_limits<float>::infinity());
   int next = rng->UniformInt(0, n - 1);
   for (int k = 0; k < n_keypoints; ++k) {
     centres.push_back(pts[next]);
-    int far = 0;
-    float far_d2 = -1.f;
-    for (int i = 0; i < n; ++i) {
-      const float d = (pts[i] - centres.back()).squaredNorm();
-      if (d < d2[i]) d2[i] = d;
-      if (d2[i] > far_d2) {
-        far_d2 = d2[i];
-        far = i;
-      }
-    }
-    next = far;
+    // x^2 + (y^2 + z^2): the association of Vector3f::squaredNorm, so the choices match it bit for bit.
+    d2 = d2.min((xs - pts[next].x()).square() + ((ys - pts[next].y()).square() + (zs - pts[next].z()).square()));
+    const float far_d2 = d2.maxCoeff();
+    next = static_cast<int>(std::find(d2.data(), d2.data() + n, far_d2) - d2.data());
   }
 
   // Lloyd: assign every point to its nearest centre, move each centre to its cell's centroid.
   std::vector<Eigen::Vector3d> sums(n_keypoints);
   std::vector<int> counts(n_keypoints);
   KdTree3 centre_tree;
+  std::vector<int> assignment(n, -1);
   for (int it = 0; it < options.lloyd_iterations; ++it) {
     centre_tree.Build(centres);
     std::fill(sums.begin(), sums.end(), Eigen::Vector3d::Zero());
     std::fill(counts.begin(), counts.end(), 0);
     for (int i = 0; i < n; ++i) {
-      const int c = centre_tree.Nearest(pts[i], nullptr);
+      // Last round's centre (moved a little since) bounds the search; the result is still the exact
+      // nearest, and a bound one ulp above its distance keeps ties resolved as an unbounded search does.
+      int c = assignment[i];
+      if (c < 0) {
+        c = centre_tree.Nearest(pts[i], nullptr);
+      } else {
+        const float bound = std::nextafter((centres[c] - pts[i]).squaredNorm(), std::numeric_limits<float>::infinity());
+        c = centre_tree.NearestBounded(pts[i], bound, c, nullptr);
+      }
+      assignment[i] = c;
       sums[c] += pts[i].cast<double>();
       ++counts[c];
     }
@@ -94,19 +186,25 @@ std::vector<int> SampleKeypointsLloyd(const std::vector<Eigen::Vector3f>& points
     }
   }
 
-  // Snap each centre to the nearest actual point (of all thinned candidates), keeping them distinct.
+  // Snap each centre to the nearest unused candidate (of all thinned candidates), keeping them
+  // distinct. A centre lies within a cell's width of the surface, so a search through shells of grid
+  // cells around it ends after a few cells; a kd-tree (built only if needed) takes the rare centre
+  // that is far from every candidate.
   std::vector<Eigen::Vector3f> candidate_points(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) candidate_points[i] = points[candidates[i]];
-  const KdTree3 point_tree(candidate_points);
+  const float cell_m = static_cast<float>(std::max(2.0 * options.density_voxel_m, 0.02));
+  const ShellGrid grid(candidate_points, cell_m);
+  KdTree3 point_tree;
   std::vector<char> used(candidates.size(), 0);
   std::vector<int> keypoints;
   keypoints.reserve(n_keypoints);
   std::vector<int> knn;
   for (int k = 0; k < n_keypoints; ++k) {
-    int chosen = point_tree.Nearest(centres[k], nullptr);
-    if (used[chosen]) {
+    int chosen = grid.NearestUnused(centres[k], used, kMaxShells);
+    if (chosen == kNotFound) {
+      if (point_tree.empty()) point_tree.Build(candidate_points);
       chosen = -1;
-      for (int kk = 8; chosen < 0 && kk <= static_cast<int>(candidates.size()); kk *= 4) {
+      for (int kk = 1; chosen < 0 && kk <= 4 * static_cast<int>(candidates.size()); kk *= 4) {
         point_tree.KNearest(centres[k], kk, &knn, nullptr);
         for (int idx : knn) {
           if (!used[idx]) {
@@ -115,8 +213,8 @@ std::vector<int> SampleKeypointsLloyd(const std::vector<Eigen::Vector3f>& points
           }
         }
       }
-      if (chosen < 0) continue;
     }
+    if (chosen < 0) continue;
     used[chosen] = 1;
     keypoints.push_back(candidates[chosen]);
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "objscan/recognition/test_shapes.h"
@@ -69,6 +70,77 @@ TEST(KeypointsTest, DeterministicDistinctAndSnappedToInputPoints) {
     EXPECT_GE(i, 0);
     EXPECT_LT(i, 8000);
   }
+}
+
+// The documented algorithm with brute-force searches: the fast implementation (vectorised
+// farthest-point sampling, hinted kd-tree searches) must choose exactly the same points.
+std::vector<int> ReferenceLloyd(const std::vector<Eigen::Vector3f>& points, const KeypointOptions& options, Rng* rng) {
+  const std::vector<int> candidates = VoxelThin(points, options.density_voxel_m);
+  const int n_keypoints = options.num_keypoints;
+  std::vector<int> relax = candidates;
+  if (static_cast<int>(relax.size()) > options.max_relaxation_points) {
+    for (int i = 0; i < options.max_relaxation_points; ++i) {
+      std::swap(relax[i], relax[rng->UniformInt(i, static_cast<int>(relax.size()) - 1)]);
+    }
+    relax.resize(options.max_relaxation_points);
+    std::sort(relax.begin(), relax.end());
+  }
+  const int n = static_cast<int>(relax.size());
+  std::vector<Eigen::Vector3f> centres;
+  std::vector<float> d2(n, std::numeric_limits<float>::infinity());
+  int next = rng->UniformInt(0, n - 1);
+  for (int k = 0; k < n_keypoints; ++k) {
+    centres.push_back(points[relax[next]]);
+    int far = 0;
+    for (int i = 0; i < n; ++i) {
+      d2[i] = std::min(d2[i], (points[relax[i]] - centres.back()).squaredNorm());
+      if (d2[i] > d2[far]) far = i;
+    }
+    next = far;
+  }
+  for (int it = 0; it < options.lloyd_iterations; ++it) {
+    std::vector<Eigen::Vector3d> sums(n_keypoints, Eigen::Vector3d::Zero());
+    std::vector<int> counts(n_keypoints, 0);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3f& p = points[relax[i]];
+      int best = 0;
+      for (int c = 1; c < n_keypoints; ++c) {
+        if ((centres[c] - p).squaredNorm() < (centres[best] - p).squaredNorm()) best = c;
+      }
+      sums[best] += p.cast<double>();
+      ++counts[best];
+    }
+    for (int k = 0; k < n_keypoints; ++k) {
+      if (counts[k] > 0) centres[k] = (sums[k] / counts[k]).cast<float>();
+    }
+  }
+  std::vector<char> used(candidates.size(), 0);
+  std::vector<int> keypoints;
+  for (const auto& c : centres) {
+    int best = -1;
+    for (std::size_t j = 0; j < candidates.size(); ++j) {
+      if (used[j]) continue;
+      if (best < 0 || (points[candidates[j]] - c).squaredNorm() < (points[candidates[best]] - c).squaredNorm()) {
+        best = static_cast<int>(j);
+      }
+    }
+    used[best] = 1;
+    keypoints.push_back(candidates[best]);
+  }
+  return keypoints;
+}
+
+TEST(KeypointsTest, MatchesTheBruteForceReference) {
+  std::vector<Eigen::Vector3f> pts, normals;
+  testing::SofaLike(0.01, &pts, &normals);
+  Rng noise(5);
+  for (auto& p : pts) p += Eigen::Vector3f(noise.Normal(0, 0.002), noise.Normal(0, 0.002), noise.Normal(0, 0.002));
+  KeypointOptions options;
+  options.num_keypoints = 150;
+  options.max_relaxation_points = 3000;  // fewer than the thinned points: the random subset is used
+  ASSERT_GT(VoxelThin(pts, options.density_voxel_m).size(), 3000u);
+  Rng rng_fast(9), rng_reference(9);
+  EXPECT_EQ(SampleKeypointsLloyd(pts, options, &rng_fast), ReferenceLloyd(pts, options, &rng_reference));
 }
 
 TEST(KeypointsTest, FewerPointsThanKeypointsGivesAllPoints) {

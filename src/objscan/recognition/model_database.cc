@@ -375,7 +375,10 @@ void ModelDatabase::Finalize() {
   full_model_index_.Build(full_h, full_ids, NumBins());
   keypoint_targets_.clear();
   keypoint_targets_.reserve(entries_.size());
-  for (const auto& e : entries_) keypoint_targets_.emplace_back(e.keypoints);
+  for (const auto& e : entries_) {
+    keypoint_targets_.emplace_back(e.keypoints);
+    keypoint_targets_.back().EnableDistanceGrid(kGridTruncationM, kGridMaxVertices, kGridMinSpacingM);
+  }
   finalized_ = true;
 }
 

@@ -78,9 +78,14 @@ class ModelDatabase {
   std::vector<DatabaseEntry>& mutable_entries() { return entries_; }
   const std::vector<DatabaseEntry>& entries() const { return entries_; }
 
-  // Builds the inverted indices and per-entry alignment targets; call after changing entries
-  // (Load calls it).
+  // Builds the inverted indices and per-entry alignment targets (their distance grids are built on
+  // first use, never stored); call after changing entries (Load calls it).
   void Finalize();
+  // The entries' distance grids: truncated at this distance (the default initial_truncation_m), at
+  // most this many one-byte vertices per entry (~15 MB for 2000 entries), spacing at least this.
+  static constexpr float kGridTruncationM = 0.15f;
+  static constexpr int kGridMaxVertices = 16384;
+  static constexpr float kGridMinSpacingM = 0.03f;
   bool finalized() const { return finalized_; }
   const InvertedIndex& index(RetrievalScope scope) const {
     return scope == RetrievalScope::kFullModels ? full_model_index_ : all_index_;

@@ -22,6 +22,8 @@ void RecognitionOptions::Validate() const {
   config::Require(max_per_category >= 0, "recognition.max_per_category", "must be >= 0");
   config::Require(refine_entries >= 0, "recognition.refine_entries", "must be >= 0 (0 = all)");
   config::Require(estimate_points >= 3, "recognition.estimate_points", "must be at least 3");
+  config::Require(estimate_model_points == 0 || estimate_model_points >= 3, "recognition.estimate_model_points",
+                  "must be 0 (all) or at least 3");
   alignment.Validate();
 }
 
@@ -70,12 +72,12 @@ SimilarModel Recognizer::Match(const QueryDescription& query, int entry) const {
   SimilarModel m;
   m.entry = entry;
   m.alignment = AlignToItem(query.keypoints, database_.keypoint_target(entry), options_.alignment);
-  if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), &m);
+  if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), true, 0, &m);
   return m;
 }
 
 void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points,
-                         const KdTree3& points_tree, SimilarModel* m) const {
+                         const KdTree3& points_tree, bool refined, int model_points, SimilarModel* m) const {
   const AlignmentTarget& target = database_.keypoint_target(m->entry);
   const DatabaseEntry& e = database_.entries()[m->entry];
   const double scale = m->alignment.scale;
@@ -92,26 +94,31 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   // d(c, m): query points mapped into the entry frame, nearest entry keypoint.
   const Eigen::Affine3f T = m->alignment.T_item_query.cast<float>();
   double sum = 0.0;
-  for (const auto& p : points) {
-    float d2 = 0.f;
-    target.tree().Nearest(T * p, &d2);
-    sum += d2;
+  if (refined) {
+    o.similarity_m2 = m->alignment.mean_squared_distance_m2;
+  } else {
+    for (const auto& p : points) {
+      float d2 = 0.f;
+      target.tree().Nearest(T * p, &d2);
+      sum += d2;
+    }
+    o.similarity_m2 = sum / static_cast<double>(points.size());
   }
-  o.similarity_m2 = sum / static_cast<double>(points.size());
   // d(m, c): entry keypoints mapped into the query frame (distances there are 1/scale of the entry
   // frame's); each squared distance is kept for the visible term below.
   const Eigen::Affine3f T_query_item = m->alignment.T_item_query.inverse().cast<float>();
   const float scale2 = static_cast<float>(scale * scale);
   const std::vector<Eigen::Vector3f>& model = target.tree().points();
-  std::vector<float> model_d2(model.size());
+  const std::size_t n_model = model_points > 0 ? std::min<std::size_t>(model_points, model.size()) : model.size();
+  std::vector<float> model_d2(n_model);
   sum = 0.0;
-  for (std::size_t k = 0; k < model.size(); ++k) {
+  for (std::size_t k = 0; k < n_model; ++k) {
     float d2 = 0.f;
     points_tree.Nearest(T_query_item * model[k], &d2);
     model_d2[k] = scale2 * d2;
     sum += model_d2[k];
   }
-  o.completeness_m2 = sum / static_cast<double>(model.size());
+  o.completeness_m2 = sum / static_cast<double>(n_model);
   o.objectness = std::exp(-std::sqrt(o.similarity_m2 + o.completeness_m2) / diag);
   m->fit = std::exp(-std::sqrt(o.similarity_m2) / diag);
   m->visible_objectness = o.objectness;
@@ -119,7 +126,7 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
     const Eigen::Vector3f view_item = (T.linear() * query.view_direction).normalized();
     double visible_sum = 0.0;
     int n = 0;
-    for (std::size_t k = 0; k < model.size(); ++k) {
+    for (std::size_t k = 0; k < n_model; ++k) {
       if (e.keypoint_normals[k].dot(view_item) <= options_.visible_min_cos) continue;
       visible_sum += model_d2[k];
       ++n;
@@ -165,7 +172,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
       m.alignment.status = AlignmentStatus::kOk;
       m.alignment.T_item_query = coarse[i].front().T_item_query();
       m.alignment.scale = coarse[i].front().scale;
-      Measure(query, subset, subset_tree, &m);
+      Measure(query, subset, subset_tree, false, options_.estimate_model_points, &m);
       ScoreForRanking(shortlist[i], &m);
       estimate[i] = m.rank_score;
     }
@@ -185,7 +192,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
     const AlignmentTarget& target = database_.keypoint_target(m.entry);
     m.alignment = two_stage ? RefineAlignment(query.keypoints, target, coarse[i], ao)
                             : AlignToItem(query.keypoints, target, ao);
-    if (m.alignment.ok()) Measure(query, query.keypoints, keypoint_tree, &m);
+    if (m.alignment.ok()) Measure(query, query.keypoints, keypoint_tree, true, 0, &m);
     ScoreForRanking(shortlist[i], &m);
     refined.push_back(std::move(m));
     if (r + 1 < first_batch) continue;

@@ -39,6 +39,9 @@ struct RecognitionOptions {
   // short). 0 = refine the whole shortlist.
   int refine_entries = 6;
   int estimate_points = 96;
+  // The estimate's completeness term over this many of the entry's keypoints (0 = all): the first
+  // ones, which farthest-point initialisation spread evenly over the entry.
+  int estimate_model_points = 160;
   AlignmentOptions alignment;
 
   template <class V>
@@ -53,6 +56,7 @@ struct RecognitionOptions {
     v("max_per_category", max_per_category);
     v("refine_entries", refine_entries);
     v("estimate_points", estimate_points);
+    v("estimate_model_points", estimate_model_points);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -110,8 +114,11 @@ class Recognizer {
   // under m->alignment against m->entry; m->rank_score = objectness. `points_tree` is a kd-tree over
   // `points` in the query frame, built once per query: the completeness term looks the entry's
   // keypoints up in it after mapping them into the query frame, instead of a tree per entry.
+  // With `refined`, m->alignment comes from RefineAlignment on query.keypoints == points, whose
+  // mean_squared_distance_m2 is then d(c, m) already. The completeness term uses the entry's first
+  // model_points keypoints (0 = all).
   void Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points, const KdTree3& points_tree,
-               SimilarModel* m) const;
+               bool refined, int model_points, SimilarModel* m) const;
   void ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const;
 
   const ModelDatabase& database_;

@@ -1,0 +1,65 @@
+#include "objscan/recognition/distance_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace objscan::recognition {
+
+DistanceGrid::DistanceGrid(const std::vector<Eigen::Vector3f>& points, float truncation_m, int max_vertices,
+                           float min_spacing_m) {
+  if (points.empty() || !(truncation_m > 0.f) || max_vertices < 8) return;
+  Eigen::Vector3f lo = points[0], hi = points[0];
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  lo.array() -= truncation_m;
+  hi.array() += truncation_m;
+  const Eigen::Vector3f extent = hi - lo;
+  float spacing = std::max(min_spacing_m, std::cbrt(extent.prod() / static_cast<float>(max_vertices)));
+  const auto count = [&](float e, float h) { return static_cast<int>(std::floor(e / h)) + 2; };
+  while (static_cast<long>(count(extent.x(), spacing)) * count(extent.y(), spacing) * count(extent.z(), spacing) >
+         max_vertices)
+    spacing *= 1.05f;
+  nx_ = count(extent.x(), spacing);
+  ny_ = count(extent.y(), spacing);
+  nz_ = count(extent.z(), spacing);
+  origin_ = lo;
+  spacing_m_ = spacing;
+  inv_spacing_ = 1.f / spacing;
+  truncation_m_ = truncation_m;
+  step_m_ = truncation_m / 255.f;
+
+  // Splat each point into the vertices within the truncation distance (exact squared distances).
+  const float t2 = truncation_m * truncation_m;
+  std::vector<float> d2(static_cast<std::size_t>(nx_) * ny_ * nz_, t2);
+  const int reach = static_cast<int>(std::ceil(truncation_m * inv_spacing_));
+  for (const auto& p : points) {
+    const Eigen::Vector3f g = (p - origin_) * inv_spacing_;
+    const int cy = static_cast<int>(std::lround(g.y())),
+              cz = static_cast<int>(std::lround(g.z()));
+    for (int z = std::max(0, cz - reach); z <= std::min(nz_ - 1, cz + reach); ++z) {
+      const float dz = origin_.z() + z * spacing - p.z();
+      for (int y = std::max(0, cy - reach); y <= std::min(ny_ - 1, cy + reach); ++y) {
+        const float dy = origin_.y() + y * spacing - p.y();
+        const float dyz2 = dy * dy + dz * dz;
+        if (dyz2 >= t2) continue;
+        float* row = d2.data() + (static_cast<std::size_t>(z) * ny_ + y) * nx_;
+        // Only the vertices of this row inside the truncation sphere.
+        const float half_width = std::sqrt(t2 - dyz2) * inv_spacing_;
+        const int x_lo = std::max(0, static_cast<int>(std::ceil(g.x() - half_width)));
+        const int x_hi = std::min(nx_ - 1, static_cast<int>(std::floor(g.x() + half_width)));
+        for (int x = x_lo; x <= x_hi; ++x) {
+          const float dx = origin_.x() + x * spacing - p.x();
+          row[x] = std::min(row[x], dx * dx + dyz2);
+        }
+      }
+    }
+  }
+  values_.resize(d2.size());
+  for (std::size_t i = 0; i < d2.size(); ++i) {
+    values_[i] = static_cast<std::uint8_t>(std::min(255.f, std::round(std::sqrt(d2[i]) / step_m_)));
+  }
+}
+
+}  // namespace objscan::recognition
