@@ -424,7 +424,14 @@ struct Scanner::State {
         o.objectness = r.objectness;
         o.center_world = bounds.Center();
         o.area_m2 = area;
-        o.views_spent = views_spent[id];
+        // Views spent on any of its components count: post-segmentation regroups components from step to
+        // step, and a regrouped object (new id) must not restart its view budget.
+        int spent = views_spent[id];
+        for (auto l : r.component_ids) {
+          auto it = label_views.find(l);
+          if (it != label_views.end()) spent = std::max(spent, it->second);
+        }
+        o.views_spent = spent;
         candidates.push_back(o);
         candidate_object.push_back(k);
       }
@@ -515,6 +522,7 @@ struct Scanner::State {
       history.resize(static_cast<std::size_t>(views_spent[id]) + 1, 0.0);
       history[static_cast<std::size_t>(views_spent[id])] = gamma.objectness;
       ++views_spent[id];
+      for (auto l : gamma.component_ids) ++label_views[l];
       views_of[id].push_back(robot.CameraPose());
       ++record.nbv_views;
       return true;
@@ -617,6 +625,7 @@ struct Scanner::State {
   std::set<int> given_up_no_view;  // given up because no NBV candidate was valid (subset of given_up)
   std::vector<Eigen::Vector2d> stuck_lookarounds;  // where the robot looked around on getting stuck
   std::map<int, int> views_spent;
+  std::map<std::int32_t, int> label_views;  // NBV views spent on objects holding this component
   std::map<int, std::vector<double>> objectness_history;  // O(r) of an OOI before each of its views
   std::map<int, std::vector<geometry::Pose3>> views_of;  // NBV camera poses per object of interest
   std::vector<Eigen::Vector3d> visited_goals;
