@@ -86,27 +86,14 @@ struct RunEvaluator::Impl {
   std::vector<Eigen::Vector3d> camera_per_view;
   std::vector<std::pair<int, double>> rand_index_per_view;
 
-  // Ground truth set: every non-structural object (instances of structure listed apart).
-  std::vector<GroundTruthInstance> Truth(std::vector<std::int32_t>* structural) const {
-    std::vector<GroundTruthInstance> truth;
-    for (const auto& o : scene.objects()) {
-      if (o.IsStructural()) {
-        if (structural) structural->push_back(o.instance_id);
-        continue;
-      }
-      GroundTruthInstance g;
-      g.instance_id = o.instance_id;
-      g.category = o.category;
-      g.on_floor = scene.ObjectBounds(o).min_m.z() < kOnFloorMaxZ_m;
-      truth.push_back(g);
-    }
-    return truth;
-  }
+  // Ground truth set: every non-structural object; the structural instances listed apart. Fixed for
+  // the run, so taken once.
+  std::vector<GroundTruthInstance> truth;
+  std::vector<std::int32_t> structural;
 
   // Rand Index over the reconstructed non-structural points: points outside every object keep
   // their pre-segment (negated, so ids never collide).
-  double RandIndexOf(const mapping::SurfaceMap& map, const std::vector<int>& object_id,
-                     const std::vector<GroundTruthInstance>& truth) const {
+  double RandIndexOf(const mapping::SurfaceMap& map, const std::vector<int>& object_id) const {
     std::vector<std::int32_t> segment, instance;
     segment.reserve(map.size());
     instance.reserve(map.size());
@@ -131,6 +118,17 @@ struct RunEvaluator::Impl {
     options.min_range_m = c.sensor.min_range_m;
     options.max_range_m = c.sensor.max_range_m;
     coverage = std::make_unique<CoverageAccumulator>(std::move(voxels), options);
+    for (const auto& o : scene.objects()) {
+      if (o.IsStructural()) {
+        structural.push_back(o.instance_id);
+        continue;
+      }
+      GroundTruthInstance g;
+      g.instance_id = o.instance_id;
+      g.category = o.category;
+      g.on_floor = scene.ObjectBounds(o).min_m.z() < kOnFloorMaxZ_m;
+      truth.push_back(g);
+    }
   }
 };
 
@@ -187,15 +185,15 @@ void RunEvaluator::ObserveAnalysis(const scanning::Scanner& scanner) {
   Impl& m = *impl_;
   std::vector<int> object_id;
   scanner.AnalysisElementObjects(&object_id);
-  const double ri = m.RandIndexOf(scanner.surface_map(), object_id, m.Truth(nullptr));
+  const double ri = m.RandIndexOf(scanner.surface_map(), object_id);
   m.rand_index_per_view.emplace_back(scanner.analysis_views(), ri);
 }
 
 RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const {
   const Impl& m = *impl_;
   RunMetrics out;
-  std::vector<std::int32_t> structural;
-  const std::vector<GroundTruthInstance> truth = m.Truth(&structural);
+  const std::vector<GroundTruthInstance>& truth = m.truth;
+  const std::vector<std::int32_t>& structural = m.structural;
   // Output objects: complete ones, and incomplete ones recognised with enough objectness.
   std::vector<OutputObject> outputs;
   for (const auto& o : record.objects) {
@@ -218,7 +216,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   const mapping::SurfaceMap& map = scanner.surface_map();
   std::vector<int> object_id, category_id;
   scanner.ElementObjects(&object_id, &category_id);
-  out.rand_index = m.RandIndexOf(map, object_id, truth);
+  out.rand_index = m.RandIndexOf(map, object_id);
   const auto preseg = segmentation::EvaluatePresegmentation(map, structural);
   out.rand_index_preseg = preseg.rand_index_preseg;
   out.preseg_purity = preseg.preseg_purity;

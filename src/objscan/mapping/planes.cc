@@ -25,11 +25,21 @@ void StructureOptions::Validate() const {
 
 bool StructureResult::InsideWalls(const Eigen::Vector3d& p, double margin_m) const {
   for (const WallPlane& w : walls) {
-    const double s = -w.normal.y() * p.x() + w.normal.x() * p.y();
+    const double s = w.Along(p);
     if (s < w.span_min_m - margin_m || s > w.span_max_m + margin_m) continue;
     if (w.SignedDistance(p) < -margin_m) return false;
   }
   return true;
+}
+
+bool StructureResult::OnStructure(const Eigen::Vector3d& p, double distance_m) const {
+  if (has_floor && std::fabs(p.z() - floor_height_m) < distance_m) return true;
+  for (const WallPlane& w : walls) {
+    if (std::fabs(w.SignedDistance(p)) >= distance_m) continue;
+    const double s = w.Along(p);
+    if (s > w.span_min_m - distance_m && s < w.span_max_m + distance_m) return true;
+  }
+  return false;
 }
 
 StructureDetector::StructureDetector(const StructureOptions& options) : options_(options) { options_.Validate(); }
@@ -210,7 +220,7 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
         ++inliers;
         wall.z_min_m = std::min(wall.z_min_m, p.z());
         wall.z_max_m = std::max(wall.z_max_m, p.z());
-        const double s = -wall.normal.y() * p.x() + wall.normal.x() * p.y();
+        const double s = wall.Along(p);
         wall.span_min_m = std::min(wall.span_min_m, s);
         wall.span_max_m = std::max(wall.span_max_m, s);
       }
@@ -224,7 +234,7 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Vector3d p = map->position(i).cast<double>();
       if (wall.SignedDistance(p) >= -2.0 * tol) continue;
-      const double s = -wall.normal.y() * p.x() + wall.normal.x() * p.y();
+      const double s = wall.Along(p);
       if (s > wall.span_min_m + tol && s < wall.span_max_m - tol) ++behind;
     }
     if (static_cast<double>(behind) > options_.wall_max_behind_fraction * static_cast<double>(n)) continue;

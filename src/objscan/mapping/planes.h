@@ -50,6 +50,8 @@ struct WallPlane {
   // Extent along the wall direction t = (-n.y, n.x, 0): [span_min_m, span_max_m] of t . x.
   double span_min_m = 0.0, span_max_m = 0.0;
   double SignedDistance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset_m; }
+  // Position of p along the wall direction t = (-n.y, n.x, 0) (compare with the span).
+  double Along(const Eigen::Vector3d& p) const { return -normal.y() * p.x() + normal.x() * p.y(); }
 };
 
 struct StructureResult {
@@ -62,6 +64,9 @@ struct StructureResult {
 
   // True when p is on the room side of every wall whose span covers it (margin in metres).
   bool InsideWalls(const Eigen::Vector3d& p, double margin_m) const;
+  // True when p lies within distance_m of the floor or of a wall plane (within its span widened by
+  // distance_m).
+  bool OnStructure(const Eigen::Vector3d& p, double distance_m) const;
 };
 
 class StructureDetector {

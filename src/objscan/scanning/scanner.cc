@@ -281,6 +281,17 @@ struct Scanner::State {
     TakeView(plan.T_world_camera, step);
   }
 
+  // The look-around of the exploration options, turning in place where the robot stands.
+  void LookAroundInPlace(StepRecord* step) {
+    step->action = "frontier";
+    step->look_around = true;
+    const Eigen::Vector2d xy = robot.base().xy_m;
+    for (const auto& T : planning::LookAroundViews(Eigen::Vector3d(xy.x(), xy.y(), config.scanner.start_camera_height_m),
+                                                   robot.base().theta_rad, config.exploration)) {
+      TurnInPlaceView(T, step);
+    }
+  }
+
   // --- analysis: C, R, complete / noise objects ---------------------------------------------------
   void Analyze(StepRecord* step) {
     Stopwatch w;
@@ -359,17 +370,7 @@ struct Scanner::State {
     if (fraction >= 1.0 || c.points.empty()) return false;
     const double d = config.scanner.structure_residue_distance_m;
     std::size_t near = 0;
-    for (const auto& pf : c.points) {
-      const Eigen::Vector3d p = pf.cast<double>();
-      bool on = structure.has_floor && std::abs(p.z() - structure.floor_height_m) < d;
-      for (std::size_t w = 0; !on && w < structure.walls.size(); ++w) {
-        const mapping::WallPlane& wall = structure.walls[w];
-        if (std::abs(wall.SignedDistance(p)) >= d) continue;
-        const double t = -wall.normal.y() * p.x() + wall.normal.x() * p.y();
-        on = t > wall.span_min_m - d && t < wall.span_max_m + d;
-      }
-      near += on;
-    }
+    for (const auto& p : c.points) near += structure.OnStructure(p.cast<double>(), d);
     return static_cast<double>(near) >= fraction * static_cast<double>(c.points.size());
   }
 
@@ -685,13 +686,8 @@ bool Scanner::Step() {
   Stopwatch step_wall;
   if (step.index == 0) {
     // Start by looking around in place.
-    step.action = "frontier";
-    step.look_around = true;
     s.AddTrajectorySample(0, false);
-    const auto views = planning::LookAroundViews(
-        Eigen::Vector3d(s.robot.base().xy_m.x(), s.robot.base().xy_m.y(), s.config.scanner.start_camera_height_m),
-        s.robot.base().theta_rad, s.config.exploration);
-    for (const auto& T : views) s.TurnInPlaceView(T, &step);
+    s.LookAroundInPlace(&step);
   } else {
     s.RefreshNavigation();
     const bool object_guidance = s.config.scanner.guidance == "object";
@@ -709,13 +705,8 @@ bool Scanner::Step() {
                                            [&](const Eigen::Vector2d& p) { return (p - here).norm() < 0.5; });
       if (t == Termination::kStuck && !looked_here) {
         s.stuck_lookarounds.push_back(here);
-        step.action = "frontier";
-        step.look_around = true;
         step.notes.push_back("no reachable goal: looking around before giving up");
-        const auto views = planning::LookAroundViews(
-            Eigen::Vector3d(here.x(), here.y(), s.config.scanner.start_camera_height_m), s.robot.base().theta_rad,
-            s.config.exploration);
-        for (const auto& T : views) s.TurnInPlaceView(T, &step);
+        s.LookAroundInPlace(&step);
         // Objects given up for want of a valid view get another chance with the better map.
         for (int id : s.given_up_no_view) s.given_up.erase(id);
         s.given_up_no_view.clear();

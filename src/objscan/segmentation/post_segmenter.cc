@@ -89,8 +89,7 @@ void PostSegmenter::ClearCache() {
   group_cache_.clear();
 }
 
-const MatchResult& PostSegmenter::GroupMatches(const PostSegmenterInput& input, const std::vector<int>& members,
-                                               PostSegmenterStats* stats) {
+PostSegmenter::GroupKey PostSegmenter::KeyOf(const PostSegmenterInput& input, const std::vector<int>& members) {
   GroupKey key;
   key.reserve(members.size());
   for (int i : members) {
@@ -98,6 +97,12 @@ const MatchResult& PostSegmenter::GroupMatches(const PostSegmenterInput& input, 
     key.emplace_back(c.id, c.revision);
   }
   std::sort(key.begin(), key.end());
+  return key;
+}
+
+const MatchResult& PostSegmenter::GroupMatches(const PostSegmenterInput& input, const std::vector<int>& members,
+                                               PostSegmenterStats* stats) {
+  GroupKey key = KeyOf(input, members);
   auto it = group_cache_.find(key);
   if (it != group_cache_.end()) {
     if (stats != nullptr) ++stats->group_cache_hits;
@@ -119,13 +124,7 @@ void PostSegmenter::PrefetchGroups(const PostSegmenterInput& input, const std::v
   std::vector<GroupKey> missing;
   std::vector<std::vector<std::int32_t>> queries;
   for (const std::vector<int>& members : unions) {
-    GroupKey key;
-    key.reserve(members.size());
-    for (int i : members) {
-      const auto& c = input.components[static_cast<std::size_t>(i)];
-      key.emplace_back(c.id, c.revision);
-    }
-    std::sort(key.begin(), key.end());
+    GroupKey key = KeyOf(input, members);
     auto it = group_cache_.find(key);
     if (it != group_cache_.end()) {
       ++stats->group_cache_hits;

@@ -152,6 +152,8 @@ class PostSegmenter {
  private:
   // (id, revision) of each member, ascending by id: the cache key of a union of components.
   using GroupKey = std::vector<std::pair<std::int32_t, std::uint64_t>>;
+  // The cache key of a union of components (by index into the input).
+  static GroupKey KeyOf(const PostSegmenterInput& input, const std::vector<int>& members);
 
   struct ComponentEntry {
     std::uint64_t revision = 0;

@@ -146,11 +146,19 @@ bool Navigator::LineOfSight(const Eigen::Vector2d& a, const Eigen::Vector2d& b) 
   return true;
 }
 
+bool Navigator::StartFrom(const Eigen::Vector2d& xy, Eigen::Vector2d* start_xy) const {
+  if (IsFree(xy)) {
+    *start_xy = xy;
+    return true;
+  }
+  return options_.start_escape_m > 0.0 && xy.allFinite() && NearestFree(xy, options_.start_escape_m, start_xy);
+}
+
 Path2D Navigator::Plan(const Eigen::Vector2d& start, const Eigen::Vector2d& goal) const {
   Path2D path;
   if (!IsFree(start)) {
     Eigen::Vector2d escape;
-    if (options_.start_escape_m > 0.0 && start.allFinite() && NearestFree(start, options_.start_escape_m, &escape)) {
+    if (StartFrom(start, &escape)) {
       path = Plan(escape, goal);
       if (path.ok()) {
         path.waypoints.insert(path.waypoints.begin(), start);

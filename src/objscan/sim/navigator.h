@@ -73,6 +73,10 @@ class Navigator {
 
   Path2D Plan(const Eigen::Vector2d& start, const Eigen::Vector2d& goal) const;
 
+  // Where a robot at xy starts moving from: xy itself when free, else the nearest free cell within
+  // options().start_escape_m. False when neither exists (a plan from xy is kStartBlocked).
+  bool StartFrom(const Eigen::Vector2d& xy, Eigen::Vector2d* start_xy) const;
+
   // Grid path length (metres, 8-connected, same moves as A*) from start to every cell; infinity where
   // unreachable; all infinity when start is not free. Index as grid().Index(ix, iy).
   std::vector<double> DistanceField(const Eigen::Vector2d& start) const;

@@ -99,14 +99,10 @@ ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const Navigator& 
   geometry::YawPitchOfCamera(T_world_camera, &yaw, &pitch);
   const Eigen::Vector3d camera = T_world_camera.translation();
   const Eigen::Vector2d camera_xy = camera.head<2>();
-  if (!navigator.IsFree(base_.xy_m)) {
-    // The navigator backs a robot out of a blocked start when a free cell is close enough.
-    Eigen::Vector2d escape;
-    const double escape_m = navigator.options().start_escape_m;
-    if (!(escape_m > 0.0 && navigator.NearestFree(base_.xy_m, escape_m, &escape))) {
-      plan.status = ReachStatus::kStartBlocked;
-      return plan;
-    }
+  Eigen::Vector2d start_xy;
+  if (!navigator.StartFrom(base_.xy_m, &start_xy)) {  // a blocked start may back out to a free cell
+    plan.status = ReachStatus::kStartBlocked;
+    return plan;
   }
 
   // Candidates: the current base when it already reaches, then rings around the camera, each ring
