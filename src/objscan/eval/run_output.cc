@@ -55,7 +55,8 @@ std::string RunJson(const RunOutputInputs& in) {
               {"pose", PoseJson(s.T_world_camera)},
               {"travel_m", s.travel_m},
               {"components", s.num_components},
-              {"objects", s.num_objects}};
+              {"objects", s.num_objects},
+              {"queries", Json{{"component", s.component_queries}, {"pair", s.pair_queries}, {"group", s.group_queries}}}};
     Json timing = Json::object();
     for (const char* stage : {"sense", "fuse", "segment", "recognize", "nbo", "nbv", "navigate_sim", "wall"}) {
       auto it = s.timing_ms.find(stage);

@@ -7,22 +7,87 @@
 
 namespace objscan::recognition {
 
+namespace {
+
+geometry::PointCloud CloudOf(const segmentation::Component& c) {
+  geometry::PointCloud cloud;
+  cloud.points = c.points;
+  cloud.normals = c.normals;
+  return cloud;
+}
+
+}  // namespace
+
+void RecognizerComponentMatcher::SetComponents(const segmentation::ComponentGraph* graph) {
+  graph_ = graph;
+  for (auto it = descriptions_.begin(); it != descriptions_.end();) {
+    const segmentation::Component* c = graph_ ? graph_->Find(it->first) : nullptr;
+    it = (c == nullptr || c->revision != it->second.revision) ? descriptions_.erase(it) : std::next(it);
+  }
+}
+
+void RecognizerComponentMatcher::DescribeMissing(const std::vector<std::vector<std::int32_t>>& queries) {
+  if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");
+  std::vector<const segmentation::Component*> missing;
+  for (const auto& ids : queries) {
+    for (std::int32_t id : ids) {
+      const segmentation::Component* c = graph_->Find(id);
+      if (c == nullptr || c->points.empty()) continue;
+      auto it = descriptions_.find(id);
+      if (it != descriptions_.end() && it->second.revision == c->revision) continue;
+      descriptions_[id] = CachedDescription{c->revision, nullptr};  // claimed; filled below
+      missing.push_back(c);
+    }
+  }
+  std::vector<QueryDescription> described(missing.size());
+  sim::ParallelForBlocks(static_cast<int>(missing.size()), threads_,
+                         [&](int i) { described[i] = recognizer_.Describe(CloudOf(*missing[i])); });
+  for (std::size_t i = 0; i < missing.size(); ++i) {
+    descriptions_[missing[i]->label].description = std::make_shared<const QueryDescription>(std::move(described[i]));
+  }
+}
+
 segmentation::MatchResult RecognizerComponentMatcher::Match(const std::vector<std::int32_t>& component_ids,
                                                              segmentation::MatchScope scope) {
   if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");
-  geometry::PointCloud union_cloud;
-  for (std::int32_t id : component_ids) {
-    const segmentation::Component* c = graph_->Find(id);
-    if (!c) continue;
-    union_cloud.points.insert(union_cloud.points.end(), c->points.begin(), c->points.end());
-    union_cloud.normals.insert(union_cloud.normals.end(), c->normals.begin(), c->normals.end());
-  }
+  if (recognizer_.options().compose_unions) DescribeMissing({component_ids});
+  return MatchDescribed(component_ids, scope);
+}
+
+segmentation::MatchResult RecognizerComponentMatcher::MatchDescribed(const std::vector<std::int32_t>& component_ids,
+                                                                     segmentation::MatchScope scope) const {
   segmentation::MatchResult result;
-  if (union_cloud.empty()) return result;
+  QueryDescription composed;
+  const QueryDescription* query = nullptr;
+  if (recognizer_.options().compose_unions) {
+    std::vector<const QueryDescription*> parts;
+    for (std::int32_t id : component_ids) {
+      auto it = descriptions_.find(id);
+      if (it != descriptions_.end() && it->second.description) parts.push_back(it->second.description.get());
+    }
+    if (parts.empty()) return result;
+    if (parts.size() == 1) {
+      query = parts.front();
+    } else {
+      composed = recognizer_.Compose(parts);
+      query = &composed;
+    }
+  } else {
+    geometry::PointCloud union_cloud;
+    for (std::int32_t id : component_ids) {
+      const segmentation::Component* c = graph_->Find(id);
+      if (!c) continue;
+      union_cloud.points.insert(union_cloud.points.end(), c->points.begin(), c->points.end());
+      union_cloud.normals.insert(union_cloud.normals.end(), c->normals.begin(), c->normals.end());
+    }
+    if (union_cloud.empty()) return result;
+    composed = recognizer_.Describe(union_cloud);
+    query = &composed;
+  }
   const RetrievalScope s =
       scope == segmentation::MatchScope::kFullModels ? RetrievalScope::kFullModels : RetrievalScope::kAllEntries;
   const ModelDatabase& db = recognizer_.database();
-  for (const SimilarModel& m : recognizer_.Retrieve(recognizer_.Describe(union_cloud), s)) {
+  for (const SimilarModel& m : recognizer_.Retrieve(*query, s)) {
     const DatabaseEntry& e = db.entries()[m.entry];
     segmentation::ModelMatch match;
     match.entry_id = m.entry;
@@ -48,9 +113,11 @@ segmentation::MatchResult RecognizerComponentMatcher::Match(const std::vector<st
 
 std::vector<segmentation::MatchResult> RecognizerComponentMatcher::MatchBatch(
     const std::vector<std::vector<std::int32_t>>& queries, segmentation::MatchScope scope) {
+  if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");
+  if (recognizer_.options().compose_unions) DescribeMissing(queries);
   std::vector<segmentation::MatchResult> results(queries.size());
   sim::ParallelForBlocks(static_cast<int>(queries.size()), threads_,
-                         [&](int i) { results[i] = Match(queries[i], scope); });
+                         [&](int i) { results[i] = MatchDescribed(queries[i], scope); });
   return results;
 }
 

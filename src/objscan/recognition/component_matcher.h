@@ -1,6 +1,9 @@
 #pragma once
 // segmentation::ComponentMatcher backed by a Recognizer: M(X) and O(X, m) for unions X of the
 // pre-segmented components of the current ComponentGraph (the seam the post-segmenter talks to).
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "objscan/recognition/recognizer.h"
@@ -16,7 +19,8 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
       : recognizer_(recognizer), threads_(threads) {}
 
   // The graph whose components the ids refer to; must stay valid while matching (set every step).
-  void SetComponents(const segmentation::ComponentGraph* graph) { graph_ = graph; }
+  // Cached descriptions of components that are gone or changed since are dropped.
+  void SetComponents(const segmentation::ComponentGraph* graph);
 
   segmentation::MatchResult Match(const std::vector<std::int32_t>& component_ids,
                                   segmentation::MatchScope scope) override;
@@ -24,7 +28,19 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
                                                     segmentation::MatchScope scope) override;
 
  private:
+  // Describes (in parallel) every component named in `queries` whose description is not cached at
+  // its current revision; only with RecognitionOptions::compose_unions.
+  void DescribeMissing(const std::vector<std::vector<std::int32_t>>& queries);
+  // M(X) once DescribeMissing covered X (reads the cache only, so batch queries may run in parallel).
+  segmentation::MatchResult MatchDescribed(const std::vector<std::int32_t>& component_ids,
+                                           segmentation::MatchScope scope) const;
+
+  struct CachedDescription {
+    std::uint64_t revision = 0;
+    std::shared_ptr<const QueryDescription> description;
+  };
   const Recognizer& recognizer_;
+  std::unordered_map<std::int32_t, CachedDescription> descriptions_;  // by component id
   int threads_ = 0;
   const segmentation::ComponentGraph* graph_ = nullptr;
 };

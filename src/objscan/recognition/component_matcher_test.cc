@@ -2,14 +2,35 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "objscan/recognition/test_database.h"
 
 namespace objscan::recognition {
 namespace {
 
-TEST(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
-  const ModelDatabase db = BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions());
-  const Recognizer recognizer(db, RecognitionOptions());
+// Both ways of describing a union: composed from the cached parts (default) and from its points.
+class ComponentMatcherTest : public ::testing::TestWithParam<bool> {
+ protected:
+  static void SetUpTestSuite() {
+    db_ = new ModelDatabase(BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions()));
+  }
+  static void TearDownTestSuite() {
+    delete db_;
+    db_ = nullptr;
+  }
+  static RecognitionOptions Options() {
+    RecognitionOptions options;
+    options.compose_unions = GetParam();
+    return options;
+  }
+  static ModelDatabase* db_;
+};
+ModelDatabase* ComponentMatcherTest::db_ = nullptr;
+
+TEST_P(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
+  const ModelDatabase& db = *db_;
+  const Recognizer recognizer(db, Options());
   // The scene: the analytic table as components (top 1, legs 2..5), moved in the world.
   ModelScan table = testing::TableScanWithComponents(0.011);
   std::vector<segmentation::Component> comps = table.components.components();
@@ -42,6 +63,41 @@ TEST(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
   EXPECT_EQ(batch[1].models.size(), leg.models.size());
   EXPECT_TRUE(matcher.Match({99}, segmentation::MatchScope::kAllEntries).models.empty());
 }
+
+// A component whose points changed (new revision) is described anew: the cached description of the
+// old points must not answer for it.
+TEST_P(ComponentMatcherTest, ChangedComponentIsDescribedAnew) {
+  const Recognizer recognizer(*db_, Options());
+  ModelScan table = testing::TableScanWithComponents(0.011);
+  std::vector<segmentation::Component> comps = table.components.components();
+  std::vector<std::vector<std::int32_t>> neighbors;
+  for (auto& c : comps) neighbors.push_back(table.components.Neighbors(c.label));
+  segmentation::ComponentGraph graph;
+  graph.Assign(comps, neighbors);
+  RecognizerComponentMatcher matcher(recognizer, 1);
+  matcher.SetComponents(&graph);
+  const auto before = matcher.Match({1, 2, 3, 4, 5}, segmentation::MatchScope::kFullModels);
+  ASSERT_FALSE(before.models.empty());
+
+  // The whole table moves 3 m along x; every component gets a new revision.
+  for (auto& c : comps) {
+    for (auto& p : c.points) p += Eigen::Vector3f(3.0f, 0.f, 0.f);
+    c.revision += 1;
+  }
+  segmentation::ComponentGraph moved;
+  moved.Assign(comps, neighbors);
+  matcher.SetComponents(&moved);
+  const auto after = matcher.MatchBatch({{1, 2, 3, 4, 5}, {1}}, segmentation::MatchScope::kFullModels);
+  ASSERT_FALSE(after[0].models.empty());
+  EXPECT_EQ(after[0].models[0].category, world::Category::kTable);
+  EXPECT_NEAR(after[0].models[0].T_world_model.translation().x() - before.models[0].T_world_model.translation().x(),
+              3.0, 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(UnionDescription, ComponentMatcherTest, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return info.param ? std::string("Composed") : std::string("FromPoints");
+                         });
 
 }  // namespace
 }  // namespace objscan::recognition

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "objscan/common/rng.h"
@@ -55,12 +56,86 @@ QueryDescription Recognizer::Describe(const geometry::PointCloud& query, const g
   }
   // Map normals face the sensor: their mean points back at it for a view from one side; a query
   // seen from all around has a short mean and no single view direction.
-  if (query.HasNormals() && normal_sum.norm() > 0.3f * q.keypoints.size()) q.view_direction = normal_sum.normalized();
+  q.sensor_normals = query.HasNormals();
+  if (q.sensor_normals && normal_sum.norm() > 0.3f * q.keypoints.size()) q.view_direction = normal_sum.normalized();
   for (const auto& p : cloud->points) q.bounds.Extend(p.cast<double>());
   q.diagonal_m = q.bounds.Diagonal();
-  std::vector<float> descriptors;
-  descriptor_->Compute(support ? *support : *cloud, q.keypoints, &descriptors);
-  q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, descriptors, q.bounds, s.bow);
+  q.num_points = cloud->points.size();
+  descriptor_->Compute(support ? *support : *cloud, q.keypoints, &q.descriptors);
+  q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, q.descriptors, q.bounds, s.bow);
+  return q;
+}
+
+namespace {
+
+// `count` of `points` spread by farthest-point sampling from the first (deterministic), in the
+// order picked; all of them when count >= points.size().
+std::vector<int> FarthestSubset(const std::vector<Eigen::Vector3f>& points, int count) {
+  const int n = static_cast<int>(points.size());
+  std::vector<int> picked;
+  if (count >= n) {
+    picked.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) picked[static_cast<std::size_t>(i)] = i;
+    return picked;
+  }
+  if (count <= 0) return picked;
+  std::vector<float> d2(static_cast<std::size_t>(n), std::numeric_limits<float>::infinity());
+  int next = 0;
+  for (int k = 0; k < count; ++k) {
+    picked.push_back(next);
+    float far_d2 = -1.f;
+    int far = 0;
+    for (int i = 0; i < n; ++i) {
+      const float d = (points[static_cast<std::size_t>(i)] - points[static_cast<std::size_t>(next)]).squaredNorm();
+      float& best = d2[static_cast<std::size_t>(i)];
+      if (d < best) best = d;
+      if (best > far_d2) {
+        far_d2 = best;
+        far = i;
+      }
+    }
+    next = far;
+  }
+  return picked;
+}
+
+}  // namespace
+
+QueryDescription Recognizer::Compose(const std::vector<const QueryDescription*>& parts) const {
+  QueryDescription q;
+  std::size_t total_points = 0;
+  for (const QueryDescription* p : parts) {
+    if (p != nullptr && !p->empty()) total_points += p->num_points;
+  }
+  if (total_points == 0) return q;
+  const DatabaseSettings& s = database_.settings();
+  const int dim = descriptor_->Dimension();
+  const int n_p = s.keypoints.num_keypoints;
+  Eigen::Vector3f normal_sum = Eigen::Vector3f::Zero();
+  q.sensor_normals = true;
+  for (const QueryDescription* p : parts) {
+    if (p == nullptr || p->empty()) continue;
+    if (p->descriptors.size() != p->keypoints.size() * static_cast<std::size_t>(dim)) {
+      throw std::invalid_argument("Recognizer::Compose: a part has no descriptors (not from Describe)");
+    }
+    const int share = std::max(
+        1, static_cast<int>(std::lround(static_cast<double>(n_p) * static_cast<double>(p->num_points) /
+                                        static_cast<double>(total_points))));
+    for (int i : FarthestSubset(p->keypoints, share)) {
+      const auto k = static_cast<std::size_t>(i);
+      q.keypoints.push_back(p->keypoints[k]);
+      q.keypoint_normals.push_back(p->keypoint_normals[k]);
+      q.descriptors.insert(q.descriptors.end(), p->descriptors.begin() + static_cast<std::ptrdiff_t>(k * dim),
+                           p->descriptors.begin() + static_cast<std::ptrdiff_t>((k + 1) * dim));
+      normal_sum += p->keypoint_normals[k];
+    }
+    q.bounds.Extend(p->bounds);
+    q.num_points += p->num_points;
+    q.sensor_normals = q.sensor_normals && p->sensor_normals;
+  }
+  if (q.sensor_normals && normal_sum.norm() > 0.3f * q.keypoints.size()) q.view_direction = normal_sum.normalized();
+  q.diagonal_m = q.bounds.Diagonal();
+  q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, q.descriptors, q.bounds, s.bow);
   return q;
 }
 

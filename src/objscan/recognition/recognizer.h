@@ -42,6 +42,11 @@ struct RecognitionOptions {
   // The estimate's completeness term over this many of the entry's keypoints (0 = all): the first
   // ones, which farthest-point initialisation spread evenly over the entry.
   int estimate_model_points = 160;
+  // A union of components is described from its parts' cached descriptions (Recognizer::Compose:
+  // keypoints in proportion to each part's size, their descriptors kept) instead of from its points
+  // (false = Describe every union, as the paper). The post-segmenter asks for many unions of the same
+  // few components; composing them skips keypoint relaxation and descriptors for all of them.
+  bool compose_unions = true;
   AlignmentOptions alignment;
 
   template <class V>
@@ -57,6 +62,7 @@ struct RecognitionOptions {
     v("refine_entries", refine_entries);
     v("estimate_points", estimate_points);
     v("estimate_model_points", estimate_model_points);
+    v("compose_unions", compose_unions);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -72,6 +78,9 @@ struct QueryDescription {
   geometry::Aabb3 bounds;                  // of the query points
   double diagonal_m = 0.0;                 // Diag(c)
   SparseHistogram bow;
+  std::vector<float> descriptors;          // keypoints.size() x descriptor dimension, row-major
+  std::size_t num_points = 0;              // query points described (its size, for Compose)
+  bool sensor_normals = false;             // normals came with the query (they face the sensor)
   bool empty() const { return keypoints.empty(); }
 };
 
@@ -96,6 +105,12 @@ class Recognizer {
   // surface) whose points support the descriptors near the query's boundary; by default the query's
   // own points. Points may come with or without normals.
   QueryDescription Describe(const geometry::PointCloud& query, const geometry::PointCloud* support = nullptr) const;
+
+  // The description of the union of disjoint parts from theirs, without their points: each part
+  // keeps a farthest-point subset of its keypoints (with their descriptors) in proportion to its
+  // share of the points, n_p in all; bounds, view direction and BoW are those of the union.
+  // Descriptors near the seams saw only their own part, so this approximates Describe(union).
+  QueryDescription Compose(const std::vector<const QueryDescription*>& parts) const;
 
   // M(c): the n_s most similar entries in `scope`, best first. Empty when nothing shares a word.
   std::vector<SimilarModel> Retrieve(const QueryDescription& query, RetrievalScope scope) const;

@@ -148,5 +148,55 @@ TEST_F(RecognizerTest, DescribeIsDeterministicAndEmptyQueryGivesNothing) {
   EXPECT_TRUE(recognizer.Retrieve(recognizer.Describe(geometry::PointCloud()), RetrievalScope::kAllEntries).empty());
 }
 
+// Compose: one part is that part; two halves of a shape give n_p keypoints shared by size, the
+// union's bounds, and retrieve the same model as describing the union's points.
+TEST_F(RecognizerTest, ComposedUnionMatchesDescribingItsPoints) {
+  const Recognizer recognizer(*db_, RecognitionOptions());
+  const geometry::PointCloud cloud = Query(&testing::TableLike, Placement(25, {1, -2, 0}), false);
+  const QueryDescription whole = recognizer.Describe(cloud);
+  const QueryDescription same = recognizer.Compose({&whole});
+  EXPECT_EQ(same.keypoints, whole.keypoints);
+  EXPECT_EQ(same.descriptors, whole.descriptors);
+  EXPECT_EQ(same.num_points, whole.num_points);
+
+  // Split at a height: the top (about a third of the points) and the legs below it.
+  const geometry::Aabb3 box = geometry::Bounds(cloud);
+  const float cut_z = static_cast<float>(box.min_m.z() + 0.8 * box.Size().z());
+  geometry::PointCloud top, legs;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    geometry::PointCloud& part = cloud.points[i].z() > cut_z ? top : legs;
+    part.points.push_back(cloud.points[i]);
+    part.normals.push_back(cloud.normals[i]);
+  }
+  ASSERT_GT(top.size(), 100u);
+  ASSERT_GT(legs.size(), 100u);
+  const QueryDescription d_top = recognizer.Describe(top), d_legs = recognizer.Describe(legs);
+  const QueryDescription composed = recognizer.Compose({&d_top, &d_legs});
+  const int n_p = db_->settings().keypoints.num_keypoints;
+  EXPECT_NEAR(static_cast<double>(composed.keypoints.size()), n_p, 2.0);
+  EXPECT_EQ(composed.descriptors.size(), composed.keypoints.size() * whole.descriptors.size() / whole.keypoints.size());
+  EXPECT_EQ(composed.num_points, cloud.size());
+  int from_top = 0;
+  for (const auto& k : composed.keypoints) from_top += k.z() > cut_z ? 1 : 0;
+  const double top_share = static_cast<double>(top.size()) / static_cast<double>(cloud.size());
+  EXPECT_NEAR(static_cast<double>(from_top) / composed.keypoints.size(), top_share, 0.01);
+  EXPECT_TRUE(composed.bounds.min_m.isApprox(box.min_m, 1e-6));
+  EXPECT_TRUE(composed.bounds.max_m.isApprox(box.max_m, 1e-6));
+  EXPECT_NEAR(composed.diagonal_m, box.Diagonal(), 1e-6);
+
+  const auto by_points = recognizer.Retrieve(whole, RetrievalScope::kFullModels);
+  const auto by_parts = recognizer.Retrieve(composed, RetrievalScope::kFullModels);
+  ASSERT_FALSE(by_points.empty());
+  ASSERT_FALSE(by_parts.empty());
+  EXPECT_EQ(db_->entries()[by_parts[0].entry].category, db_->entries()[by_points[0].entry].category);
+  EXPECT_EQ(by_parts[0].entry, by_points[0].entry);
+  EXPECT_NEAR(by_parts[0].objectness.objectness, by_points[0].objectness.objectness, 0.05);
+
+  QueryDescription no_descriptors = d_top;
+  no_descriptors.descriptors.clear();
+  EXPECT_THROW(recognizer.Compose({&no_descriptors, &d_legs}), std::invalid_argument);
+  EXPECT_TRUE(recognizer.Compose({}).empty());
+}
+
 }  // namespace
 }  // namespace objscan::recognition

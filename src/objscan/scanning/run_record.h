@@ -33,6 +33,9 @@ struct StepRecord {
   std::vector<NbvCandidateRecord> nbv_candidates;
   int num_components = 0;
   int num_objects = 0;
+  // Recognition queries of this step's post-segmentation (cache misses): components, adjacent pairs,
+  // groups (objects and split candidates).
+  int component_queries = 0, pair_queries = 0, group_queries = 0;
   // Why objects of interest were given up or goals skipped in this step (for people reading run.json).
   std::vector<std::string> notes;
 };

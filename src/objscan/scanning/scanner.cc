@@ -327,6 +327,9 @@ struct Scanner::State {
     Charge(step, "recognize", w.ElapsedMs());
     step->num_components = static_cast<int>(input.components.size());
     step->num_objects = static_cast<int>(post.objects.size());
+    step->component_queries += post.stats.component_queries;
+    step->pair_queries += post.stats.pair_queries;
+    step->group_queries += post.stats.group_queries;
 
     // Objects of this step, keyed by their smallest component label.
     objects.clear();
