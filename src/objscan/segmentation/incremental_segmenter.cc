@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -210,34 +211,88 @@ const ComponentGraph& IncrementalSegmenter::Components(mapping::SurfaceMap* map)
   std::sort(components.begin(), components.end(),
             [](const Component& a, const Component& b) { return a.label < b.label; });
 
-  // Adjacency over 2-voxel cells: labels in the same or 26-neighbouring cells touch.
+  // Adjacency over 2-voxel cells: labels in the same or 26-neighbouring cells touch. An edge between
+  // two unchanged components cannot have changed (their elements did not), so it is kept from the
+  // last call; cells are indexed only inside blocks (8 x 8 x 8 cells) that hold an element of a changed
+  // label or neighbour such a block, which is where every other edge lies.
   std::vector<std::uint8_t> present(static_cast<std::size_t>(max_label) + 1, 0);
   for (const Component& c : components) present[c.label] = 1;
-  std::unordered_map<std::uint64_t, std::uint32_t> cell_index;
-  std::vector<geometry::VoxelKey> cell_key;
-  std::vector<std::int32_t> cell_label;  // first label seen in the cell
-  std::unordered_map<std::uint32_t, std::vector<std::int32_t>> extra;  // further labels of a cell
-  for (std::size_t i = 0; i < map->size(); ++i) {
-    const std::int32_t l = map->label(i);
-    if (l <= 0 || !present[l] || map->structure(i) != mapping::Structure::kNone) continue;
-    const geometry::VoxelKey& k = map->key(i);
-    const geometry::VoxelKey ck{FloorDiv2(k.x), FloorDiv2(k.y), FloorDiv2(k.z)};
-    auto [it, inserted] = cell_index.emplace(PackCell(ck.x, ck.y, ck.z), static_cast<std::uint32_t>(cell_key.size()));
-    if (inserted) {
-      cell_key.push_back(ck);
-      cell_label.push_back(l);
-      continue;
-    }
-    if (cell_label[it->second] == l) continue;
-    std::vector<std::int32_t>& e = extra[it->second];
-    if (std::find(e.begin(), e.end(), l) == e.end()) e.push_back(l);
-  }
   std::unordered_set<std::uint64_t> edges;
   auto add_edge = [&edges](std::int32_t a, std::int32_t b) {
     if (a == b) return;
     if (a > b) std::swap(a, b);
     edges.insert((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
   };
+  for (const auto& [a, b] : graph_.Edges()) {
+    const bool a_clean = static_cast<std::size_t>(a) < dirty.size() && !dirty[a] && present[a];
+    const bool b_clean = static_cast<std::size_t>(b) < dirty.size() && !dirty[b] && present[b];
+    if (a_clean && b_clean) add_edge(a, b);
+  }
+  // Blocks of 16 voxels; a dense grid over the map's key range (one byte per block).
+  constexpr int kBlockShift = 4;
+  Eigen::Vector3i key_min = Eigen::Vector3i::Constant(std::numeric_limits<int>::max());
+  Eigen::Vector3i key_max = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
+  bool any_dirty = false;
+  for (std::size_t i = 0; i < map->size(); ++i) {
+    const std::int32_t l = map->label(i);
+    if (l <= 0 || !present[l] || map->structure(i) != mapping::Structure::kNone) continue;
+    const geometry::VoxelKey& k = map->key(i);
+    key_min = key_min.cwiseMin(Eigen::Vector3i(k.x, k.y, k.z));
+    key_max = key_max.cwiseMax(Eigen::Vector3i(k.x, k.y, k.z));
+    any_dirty = any_dirty || dirty[l];
+  }
+  std::unordered_map<std::uint64_t, std::uint32_t> cell_index;
+  std::vector<geometry::VoxelKey> cell_key;
+  std::vector<std::int32_t> cell_label;  // first label seen in the cell
+  std::unordered_map<std::uint32_t, std::vector<std::int32_t>> extra;  // further labels of a cell
+  if (any_dirty) {
+    // Block coordinates relative to key_min, with one block of margin on every side for the dilation.
+    const Eigen::Vector3i block_min(key_min.x() >> kBlockShift, key_min.y() >> kBlockShift, key_min.z() >> kBlockShift);
+    const Eigen::Vector3i dims = Eigen::Vector3i(key_max.x() >> kBlockShift, key_max.y() >> kBlockShift,
+                                                 key_max.z() >> kBlockShift) - block_min + Eigen::Vector3i::Constant(3);
+    auto block_of = [&](const geometry::VoxelKey& k) {
+      return (static_cast<std::size_t>((k.z >> kBlockShift) - block_min.z() + 1) * dims.y() +
+              static_cast<std::size_t>((k.y >> kBlockShift) - block_min.y() + 1)) * dims.x() +
+             static_cast<std::size_t>((k.x >> kBlockShift) - block_min.x() + 1);
+    };
+    std::vector<std::uint8_t> seed(static_cast<std::size_t>(dims.prod()), 0);
+    for (std::size_t i = 0; i < map->size(); ++i) {
+      const std::int32_t l = map->label(i);
+      if (l <= 0 || !present[l] || !dirty[l] || map->structure(i) != mapping::Structure::kNone) continue;
+      seed[block_of(map->key(i))] = 1;
+    }
+    std::vector<std::uint8_t> marked(seed.size(), 0);
+    const std::ptrdiff_t sy = dims.x(), sz = static_cast<std::ptrdiff_t>(dims.x()) * dims.y();
+    for (int z = 1; z + 1 < dims.z(); ++z) {
+      for (int y = 1; y + 1 < dims.y(); ++y) {
+        for (int x = 1; x + 1 < dims.x(); ++x) {
+          const std::ptrdiff_t b = z * sz + y * sy + x;
+          if (!seed[static_cast<std::size_t>(b)]) continue;
+          for (int dz = -1; dz <= 1; ++dz) {
+            for (int dy = -1; dy <= 1; ++dy) {
+              for (int dx = -1; dx <= 1; ++dx) marked[static_cast<std::size_t>(b + dz * sz + dy * sy + dx)] = 1;
+            }
+          }
+        }
+      }
+    }
+    for (std::size_t i = 0; i < map->size(); ++i) {
+      const std::int32_t l = map->label(i);
+      if (l <= 0 || !present[l] || map->structure(i) != mapping::Structure::kNone) continue;
+      const geometry::VoxelKey& k = map->key(i);
+      if (!marked[block_of(k)]) continue;
+      const geometry::VoxelKey ck{FloorDiv2(k.x), FloorDiv2(k.y), FloorDiv2(k.z)};
+      auto [it, inserted] = cell_index.emplace(PackCell(ck.x, ck.y, ck.z), static_cast<std::uint32_t>(cell_key.size()));
+      if (inserted) {
+        cell_key.push_back(ck);
+        cell_label.push_back(l);
+        continue;
+      }
+      if (cell_label[it->second] == l) continue;
+      std::vector<std::int32_t>& e = extra[it->second];
+      if (std::find(e.begin(), e.end(), l) == e.end()) e.push_back(l);
+    }
+  }
   std::vector<std::int32_t> here, there;
   auto labels_of = [&](std::uint32_t c, std::vector<std::int32_t>* out) {
     out->assign(1, cell_label[c]);

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <set>
 
+#include "objscan/common/rng.h"
 #include "objscan/mapping/testing/analytic_world.h"
 #include "objscan/mapping/planes.h"
 #include "objscan/segmentation/segmentation_quality.h"
@@ -270,6 +271,68 @@ TEST(IncrementalSegmenterTest, ComponentsTrackChangesIncrementally) {
   const ComponentGraph& g2 = s.segmenter.Components(&s.map);
   EXPECT_EQ(g2.Find(a), nullptr);
   EXPECT_NE(g2.Find(b), nullptr);
+}
+
+// The adjacency kept across calls (edges between unchanged components are not recomputed) equals the
+// adjacency computed from scratch. The scanned surface is relabelled by 7 cm cubes (so labels touch
+// across the segmenter's 16-voxel blocks), then random cubes change label a few at a time, leaving
+// most components unchanged between calls.
+TEST(IncrementalSegmenterTest, IncrementalAdjacencyEqualsRecomputingIt) {
+  AnalyticWorld world;
+  world.Add(Eigen::Vector3d(-0.4, -0.3, 0.0), Eigen::Vector3d(0.4, 0.3, 0.45), 1);
+  world.Add(Eigen::Vector3d(-0.2, -0.15, 0.45), Eigen::Vector3d(0.2, 0.15, 0.8), 2);
+  world.Add(Eigen::Vector3d(0.4, -0.3, 0.0), Eigen::Vector3d(0.9, 0.3, 0.3), 3);
+  Scanned s;
+  Scan(world, Ring(Eigen::Vector3d(0.25, 0.0, 0.3), 2.0, 1.3, 4), 40, &s);
+  auto cube_of = [](const Eigen::Vector3f& p) {
+    const Eigen::Vector3i c = (p / 0.07f).array().floor().cast<int>();
+    return (c.x() + 50) * 10000 + (c.y() + 50) * 100 + (c.z() + 50);
+  };
+  std::map<int, std::int32_t> label_of_cube;
+  for (std::size_t i = 0; i < s.map.size(); ++i) {
+    const int cube = cube_of(s.map.position(i));
+    auto it = label_of_cube.emplace(cube, static_cast<std::int32_t>(label_of_cube.size()) + 1).first;
+    s.map.SetLabel(i, it->second, 1.f);
+  }
+  ASSERT_GT(label_of_cube.size(), 50u);
+  IncrementalSegmenterOptions options;
+  options.min_component_elements = 5;
+  IncrementalSegmenter incremental(options);
+  Rng rng(7);
+  std::int32_t next_label = static_cast<std::int32_t>(label_of_cube.size()) + 1;
+  std::vector<int> cubes;
+  for (const auto& [cube, label] : label_of_cube) cubes.push_back(cube);
+  std::size_t max_edges = 0, changed_rounds = 0;
+  std::vector<std::pair<std::int32_t, std::int32_t>> previous;
+  for (int round = 0; round < 12; ++round) {
+    if (round > 0) {
+      // Three cubes take a fresh label or the label of another cube (a merge).
+      for (int k = 0; k < 3; ++k) {
+        const int cube = cubes[static_cast<std::size_t>(rng.UniformInt(0, static_cast<int>(cubes.size()) - 1))];
+        const std::int32_t label =
+            rng.Uniform01() < 0.5 ? next_label++
+                                  : label_of_cube[cubes[static_cast<std::size_t>(
+                                        rng.UniformInt(0, static_cast<int>(cubes.size()) - 1))]];
+        for (std::size_t i = 0; i < s.map.size(); ++i) {
+          if (cube_of(s.map.position(i)) == cube) s.map.SetLabel(i, label, 1.f);
+        }
+      }
+    }
+    const ComponentGraph& graph = incremental.Components(&s.map);
+    mapping::SurfaceMap copy = s.map;
+    copy.TakeDirtyLabels();
+    for (std::int32_t l : copy.Labels()) copy.RelabelAll({l}, l);
+    IncrementalSegmenter fresh(options);
+    const ComponentGraph& full = fresh.Components(&copy);
+    if (round > 0) EXPECT_LT(incremental.changed_labels().size(), graph.size() / 4) << "round " << round;
+    ASSERT_EQ(graph.size(), full.size()) << "round " << round;
+    EXPECT_EQ(graph.Edges(), full.Edges()) << "round " << round;
+    max_edges = std::max(max_edges, full.Edges().size());
+    if (full.Edges() != previous) ++changed_rounds;
+    previous = full.Edges();
+  }
+  EXPECT_GT(max_edges, 50u);
+  EXPECT_GE(changed_rounds, 8u);
 }
 
 }  // namespace
