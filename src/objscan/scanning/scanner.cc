@@ -762,14 +762,38 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.labels = c.labels;
     rec.objects.push_back(o);
   }
+  // Candidates for fragment absorption, parallel to rec.objects.
+  std::vector<FragmentCandidate> candidates;
+  const auto model_points = [&s](const segmentation::ModelMatch& m) -> const std::vector<Eigen::Vector3f>* {
+    if (m.entry_id < 0 || m.entry_id >= static_cast<int>(s.database.entries().size())) return nullptr;
+    return &s.database.entries()[static_cast<std::size_t>(m.entry_id)].points;
+  };
+  for (const auto& c : s.completed) {
+    FragmentCandidate f;
+    for (auto l : c.labels) {
+      if (const segmentation::Component* comp = s.segmenter_graph().Find(l)) f.num_points += comp->points.size();
+    }
+    f.objectness = c.objectness;
+    f.model_points = model_points(c.model);
+    f.T_world_model = c.model.T_world_model;
+    f.may_be_absorbed = false;
+    candidates.push_back(std::move(f));
+  }
   for (int k : s.objects) {
     const auto& r = s.post.objects[k];
     // Fragments too small to be scanned as objects are reported as unrecognized surface.
     geometry::Aabb3 bounds;
     double area_m2 = 0.0;
     std::size_t num_points = 0;
-    s.ObjectGeometry(r, nullptr, &bounds, &area_m2, &num_points);
+    FragmentCandidate f;
+    s.ObjectGeometry(r, &f.points_world, &bounds, &area_m2, &num_points);
     if (static_cast<int>(num_points) < s.config.scanner.min_object_elements) continue;
+    f.objectness = r.objectness;
+    if (const auto* best = r.best_model()) {
+      f.model_points = model_points(*best);
+      f.T_world_model = best->T_world_model;
+    }
+    candidates.push_back(std::move(f));
     ObjectRecord o;
     o.id = r.component_ids.front();
     o.category = r.category;
@@ -782,6 +806,21 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.given_up = s.given_up.count(o.id) > 0;
     o.labels = r.component_ids;
     rec.objects.push_back(o);
+  }
+  // Pieces lying on a recognized neighbour's model join it (their labels, not their category).
+  {
+    const std::vector<int> host = AbsorbExplainedFragments(candidates, s.config.scanner.fragments);
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      if (host[i] == static_cast<int>(i)) continue;
+      auto& into = rec.objects[static_cast<std::size_t>(host[i])].labels;
+      into.insert(into.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
+      std::sort(into.begin(), into.end());
+    }
+    std::vector<ObjectRecord> kept;
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      if (host[i] == static_cast<int>(i)) kept.push_back(std::move(rec.objects[i]));
+    }
+    rec.objects = std::move(kept);
   }
   // Points and majority ground-truth instance per object.
   std::map<std::int32_t, int> object_of_label;

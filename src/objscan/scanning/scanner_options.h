@@ -3,6 +3,7 @@
 #include <string>
 
 #include "objscan/common/config.h"
+#include "objscan/scanning/fragment_absorption.h"
 
 namespace objscan::scanning {
 
@@ -43,6 +44,8 @@ struct ScannerOptions {
   // Floor and walls are searched again only when the map grew by this share since the last search;
   // in between, new elements are tagged with the known planes (0 = search every step).
   double structure_redetect_growth = 0.1;
+  // Pieces lying on a recognized neighbour's model are reported as part of it (fragment_absorption.h).
+  FragmentAbsorptionOptions fragments;
   int threads = 0;                     // 0 = hardware concurrency; results do not depend on it
 
   template <class V>
@@ -65,6 +68,7 @@ struct ScannerOptions {
     v("structure_residue_fraction", structure_residue_fraction);
     v("structure_residue_distance_m", structure_residue_distance_m);
     v("structure_redetect_growth", structure_redetect_growth);
+    v("fragments", fragments);
     v("threads", threads);
   }
   void Validate() const {
@@ -85,6 +89,7 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_residue_fraction", structure_residue_fraction);
     config::RequireNonNegative("scanner.structure_residue_distance_m", structure_residue_distance_m);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
+    fragments.Validate();
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }
 };
