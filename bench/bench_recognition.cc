@@ -265,3 +265,38 @@ void BM_RealRetrieve(benchmark::State& state) {
 BENCHMARK(BM_RealRetrieve)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+// ICP correspondences (alignment.h): arg 0 the kd-tree only and every round run (the behaviour
+// before the nearest grid: grid_correspondences and stop_when_correspondences_repeat off), arg 1
+// the defaults; the ratio in one run is the speed-up. BM_NearestGridBuild is the one-off cost of a
+// database entry's grid on its first use.
+namespace {
+
+void BM_AlignCorrespondences(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  const Recognizer recognizer(db, RecognitionOptions());
+  const QueryDescription q = recognizer.Describe(ChairQuery());
+  const AlignmentTarget& target = db.keypoint_target(db.models()[0].full_entry);
+  AlignmentOptions options;
+  options.grid_correspondences = state.range(0) == 1;
+  options.stop_when_correspondences_repeat = state.range(0) == 1;
+  for (auto _ : state) benchmark::DoNotOptimize(AlignToItem(q.keypoints, target, options));
+}
+BENCHMARK(BM_AlignCorrespondences)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+void BM_NearestGridBuild(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  const auto& keypoints = db.entries()[db.models()[0].full_entry].keypoints;
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const NearestGrid grid(keypoints, AlignmentTarget::kNearestGridBandM, AlignmentTarget::kNearestGridMaxCells,
+                           AlignmentTarget::kNearestGridMinCellM);
+    bytes = grid.memory_bytes();
+    benchmark::DoNotOptimize(bytes);
+  }
+  state.counters["bytes"] = static_cast<double>(bytes);
+  state.counters["points"] = static_cast<double>(keypoints.size());
+}
+BENCHMARK(BM_NearestGridBuild)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
@@ -33,7 +35,10 @@ AlignmentTarget::AlignmentTarget(const std::vector<Eigen::Vector3f>& item_points
     bounds_.Extend(p.cast<double>());
     sum += p.cast<double>();
   }
-  if (!item_points.empty()) centroid_ = sum / static_cast<double>(item_points.size());
+  if (!item_points.empty()) {
+    centroid_ = sum / static_cast<double>(item_points.size());
+    EnableNearestGrid(kNearestGridBandM, kNearestGridMaxCells, kNearestGridMinCellM);
+  }
 }
 
 struct AlignmentTarget::LazyGrid {
@@ -58,6 +63,28 @@ const DistanceGrid* AlignmentTarget::distance_grid() const {
   return &g.grid;
 }
 
+struct AlignmentTarget::LazyNearestGrid {
+  float band_m = 0.f;
+  int max_cells = 0;
+  float min_cell_m = 0.f;
+  std::once_flag once;
+  NearestGrid grid;
+};
+
+void AlignmentTarget::EnableNearestGrid(float band_m, int max_cells, float min_cell_m) {
+  nearest_grid_ = std::make_shared<LazyNearestGrid>();
+  nearest_grid_->band_m = band_m;
+  nearest_grid_->max_cells = max_cells;
+  nearest_grid_->min_cell_m = min_cell_m;
+}
+
+const NearestGrid* AlignmentTarget::nearest_grid() const {
+  if (!nearest_grid_) return nullptr;
+  LazyNearestGrid& g = *nearest_grid_;
+  std::call_once(g.once, [&] { g.grid = NearestGrid(tree_.points(), g.band_m, g.max_cells, g.min_cell_m); });
+  return &g.grid;
+}
+
 namespace {
 
 // p_item = scale * Rz(yaw) * p_query + t.
@@ -75,6 +102,13 @@ struct Similarity4 {
   }
 };
 
+// M * p + t in plain float arithmetic: inlined into the correspondence loops.
+inline Eigen::Vector3f Transform(const Eigen::Matrix3f& M, const Eigen::Vector3f& t, const Eigen::Vector3f& p) {
+  return Eigen::Vector3f(M(0, 0) * p.x() + M(0, 1) * p.y() + M(0, 2) * p.z() + t.x(),
+                         M(1, 0) * p.x() + M(1, 1) * p.y() + M(1, 2) * p.z() + t.y(),
+                         M(2, 0) * p.x() + M(2, 1) * p.y() + M(2, 2) * p.z() + t.z());
+}
+
 struct Hypothesis {
   Similarity4 x;
   double cost = std::numeric_limits<double>::infinity();  // trimmed mean squared distance
@@ -89,6 +123,12 @@ class Icp {
     hint_.assign(query.size(), -1);
     d2_.resize(query.size());
     order_.resize(query.size());
+    range_begin_.resize(query.size());
+    range_end_.resize(query.size());
+    if (options.grid_correspondences) {
+      grid_ = target.nearest_grid();
+      if (grid_ != nullptr && grid_->empty()) grid_ = nullptr;
+    }
   }
 
   // The trimmed cost of x on `subset` with every squared distance truncated at truncation_d2.
@@ -102,10 +142,9 @@ class Icp {
     const Eigen::Vector3f t = x.t.cast<float>();
     const DistanceGrid& grid = *target_.distance_grid();
     const std::size_t n = subset.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const float d = grid.Distance(M * query_[subset[k]] + t);
-      d2_[k] = std::min(d * d, truncation_d2);
-    }
+    for (std::size_t k = 0; k < n; ++k) moved_[k] = Transform(M, t, query_[subset[k]]);
+    grid.Distances(moved_.data(), n, d2_.data());
+    for (std::size_t k = 0; k < n; ++k) d2_[k] = std::min(d2_[k] * d2_[k], truncation_d2);
     return TrimmedMean(n);
   }
 
@@ -115,6 +154,8 @@ class Icp {
       const double cost = Correspond(subset, h->x);
       h->cost = cost;
       if (it == iterations) break;
+      if (options_.stop_when_correspondences_repeat && it > 0 && SameAsLastRound(subset.size())) break;
+      if (options_.stop_when_correspondences_repeat) RememberRound(subset.size());
       const double moved = Solve(subset, &h->x);
       if (moved < options_.convergence_m) {
         h->cost = Correspond(subset, h->x);
@@ -150,8 +191,30 @@ class Icp {
     const Eigen::Vector3f t = x.t.cast<float>();
     const std::size_t n = subset.size();
     const auto& item = target_.tree().points();
+    if (grid_ != nullptr) {
+      // All cell lookups first, then the scans: independent reads the processor overlaps.
+      for (std::size_t k = 0; k < n; ++k) {
+        moved_[k] = Transform(M, t, query_[subset[k]]);
+        grid_->CellRange(moved_[k], &range_begin_[k], &range_end_[k]);
+      }
+    } else {
+      for (std::size_t k = 0; k < n; ++k) moved_[k] = Transform(M, t, query_[subset[k]]);
+    }
     for (std::size_t k = 0; k < n; ++k) {
-      moved_[k] = M * query_[subset[k]] + t;
+      if (grid_ != nullptr && range_begin_[k] < range_end_[k]) {
+        // Exact where the grid covers the point: no search needed.
+        float d2 = 0.f;
+        const int i = grid_->Scan(moved_[k], range_begin_[k], range_end_[k], &d2);
+        hint_[subset[k]] = i;
+        if (d2 < truncation_d2) {
+          nearest_[k] = i;
+          d2_[k] = d2;
+        } else {
+          nearest_[k] = -1;
+          d2_[k] = truncation_d2;
+        }
+        continue;
+      }
       // The point's last correspondence (any earlier round or hypothesis) bounds the search: the
       // result is still the exact nearest neighbour, found with far fewer nodes visited.
       int& hint = hint_[subset[k]];
@@ -174,16 +237,45 @@ class Icp {
     return TrimmedMean(n);
   }
 
+  // Whether the last Correspond found the same nearest points and kept the same ones as the round
+  // remembered by RememberRound.
+  bool SameAsLastRound(std::size_t n) const {
+    if (last_kept_ != kept_) return false;
+    if (!std::equal(nearest_.begin(), nearest_.begin() + n, last_nearest_.begin())) return false;
+    // The kept set (not its order) decides the update.
+    for (std::size_t k = 0; k < kept_; ++k) {
+      if (!last_in_kept_[order_[k]]) return false;
+    }
+    return true;
+  }
+  void RememberRound(std::size_t n) {
+    last_nearest_.assign(nearest_.begin(), nearest_.begin() + n);
+    last_in_kept_.assign(n, 0);
+    for (std::size_t k = 0; k < kept_; ++k) last_in_kept_[order_[k]] = 1;
+    last_kept_ = kept_;
+  }
+
   // Trimmed mean of d2_[0, n); leaves the kept indices as order_[0, kept_).
   double TrimmedMean(std::size_t n) {
-    for (std::size_t k = 0; k < n; ++k) order_[k] = static_cast<int>(k);
     kept_ = std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(options_.trim_fraction * n)));
     kept_ = std::min(kept_, n);
-    std::nth_element(order_.begin(), order_.begin() + (kept_ - 1), order_.begin() + n,
-                     [&](int a, int b) { return d2_[a] < d2_[b] || (d2_[a] == d2_[b] && a < b); });
+    if (kept_ == 0) return std::numeric_limits<double>::infinity();
+    // Selection on (distance, index) packed in one integer: the bits of a non-negative float order as
+    // the float does, so this is the order by distance with ties to the lower index, without the
+    // indirection of comparing through indices.
+    keys_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &d2_[k], sizeof(bits));
+      keys_[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(k);
+    }
+    std::nth_element(keys_.begin(), keys_.begin() + (kept_ - 1), keys_.end());
     double sum = 0.0;
-    for (std::size_t k = 0; k < kept_; ++k) sum += d2_[order_[k]];
-    return kept_ > 0 ? sum / kept_ : std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < kept_; ++k) {
+      order_[k] = static_cast<int>(keys_[k] & 0xffffffffu);
+      sum += d2_[order_[k]];
+    }
+    return sum / kept_;
   }
 
   // One least-squares update over the kept correspondences; returns the RMS motion of the points.
@@ -240,7 +332,14 @@ class Icp {
   std::vector<int> hint_;  // per query point: its last nearest item point, -1 before the first
   std::vector<float> d2_;
   std::vector<int> order_;
+  std::vector<std::uint64_t> keys_;
   std::size_t kept_ = 0;
+  const NearestGrid* grid_ = nullptr;
+  std::vector<std::uint32_t> range_begin_, range_end_;  // per subset point: its grid cell's candidates
+  // The previous ICP round's correspondences and kept set (stop_when_correspondences_repeat).
+  std::vector<int> last_nearest_;
+  std::vector<char> last_in_kept_;
+  std::size_t last_kept_ = 0;
 };
 
 // Convex hull of the points' xy (Andrew's monotone chain): rotating it gives the rotated query's

@@ -12,6 +12,7 @@
 #include "objscan/geometry/aabb.h"
 #include "objscan/recognition/distance_grid.h"
 #include "objscan/recognition/kd_tree.h"
+#include "objscan/recognition/nearest_grid.h"
 
 namespace objscan::recognition {
 
@@ -37,6 +38,13 @@ struct AlignmentOptions {
   double min_scale = 0.8;
   double max_scale = 1.25;
   double convergence_m = 1e-5;        // stop refining when the update moves points less than this
+  // ICP correspondences from the target's nearest grid (a cell lookup and a short exact scan; built
+  // on first use) where it covers the point, else the kd-tree: the same nearest points, faster.
+  // false = kd-tree searches only.
+  bool grid_correspondences = true;
+  // End an ICP run as soon as a round finds the same correspondences (and keeps the same ones) as
+  // the round before: the next update would then be the identity.
+  bool stop_when_correspondences_repeat = true;
 
   template <class V>
   void Visit(V& v) {
@@ -57,6 +65,8 @@ struct AlignmentOptions {
     v("min_scale", min_scale);
     v("max_scale", max_scale);
     v("convergence_m", convergence_m);
+    v("grid_correspondences", grid_correspondences);
+    v("stop_when_correspondences_repeat", stop_when_correspondences_repeat);
   }
   void Validate() const;
 };
@@ -76,11 +86,21 @@ class AlignmentTarget {
   void EnableDistanceGrid(float truncation_m, int max_vertices, float min_spacing_m);
   // nullptr when not enabled.
   const DistanceGrid* distance_grid() const;
+  // The nearest grid for ICP correspondences (see NearestGrid), likewise built on first use; enabled
+  // with the defaults below by the constructor, re-parametrised (before any use) here.
+  static constexpr float kNearestGridBandM = 0.15f;
+  static constexpr int kNearestGridMaxCells = 8192;
+  static constexpr float kNearestGridMinCellM = 0.02f;
+  void EnableNearestGrid(float band_m, int max_cells, float min_cell_m);
+  // nullptr when not enabled.
+  const NearestGrid* nearest_grid() const;
 
  private:
   struct LazyGrid;
+  struct LazyNearestGrid;
   KdTree3 tree_;
   std::shared_ptr<LazyGrid> grid_;  // shared by copies; immutable once built
+  std::shared_ptr<LazyNearestGrid> nearest_grid_;
   geometry::Aabb3 bounds_;
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
 };

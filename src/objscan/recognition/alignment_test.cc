@@ -148,6 +148,53 @@ TEST(AlignmentTest, CoarseThenRefineIsAlignToItemAndTruncationKeepsThePose) {
   EXPECT_TRUE(RefineAlignment(query, target, {}, AlignmentOptions()).status == AlignmentStatus::kEmptyInput);
 }
 
+// The nearest grid gives the same correspondences as the kd-tree, so the same poses; stopping when
+// the correspondences repeat skips only updates that would be the identity. The grid is built once,
+// on first use, also when two threads reach it together.
+TEST(AlignmentTest, GridCorrespondencesAndEarlyStopKeepThePose) {
+  std::vector<Eigen::Vector3f> chair, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  const AlignmentTarget target(Keypoints(chair, 1));
+  const NearestGrid* other_grid = nullptr;
+  std::thread other([&] { other_grid = target.nearest_grid(); });
+  const NearestGrid* grid = target.nearest_grid();
+  other.join();
+  ASSERT_NE(grid, nullptr);
+  EXPECT_EQ(grid, other_grid);
+  EXPECT_FALSE(grid->empty());
+  EXPECT_LT(grid->memory_bytes(), 300u * 1024u);
+  std::vector<Eigen::Vector3f> resampled, n2;
+  testing::ChairLike(0.013, &resampled, &n2);
+  for (double yaw_deg : {23.0, -131.0}) {
+    const double yaw = geometry::DegToRad(yaw_deg);
+    const Eigen::Vector3d offset(-0.8, 1.4, 0.02);
+    Eigen::Affine3d T = Eigen::Affine3d::Identity();
+    T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+    T.translation() = offset;
+    std::vector<Eigen::Vector3f> query;
+    for (const auto& p : Keypoints(resampled, 3)) query.push_back((T * p.cast<double>()).cast<float>());
+    SCOPED_TRACE(yaw_deg);
+    AlignmentOptions kd_only;
+    kd_only.grid_correspondences = false;
+    kd_only.stop_when_correspondences_repeat = false;
+    AlignmentOptions grid_only = kd_only;
+    grid_only.grid_correspondences = true;
+    const AlignmentOptions both;  // the defaults
+    ASSERT_TRUE(both.grid_correspondences && both.stop_when_correspondences_repeat);
+    const AlignmentResult a = AlignToItem(query, target, kd_only);
+    const AlignmentResult b = AlignToItem(query, target, grid_only);
+    const AlignmentResult c = AlignToItem(query, target, both);
+    ExpectRecovers(a, yaw, offset);
+    ExpectRecovers(b, yaw, offset);
+    ExpectRecovers(c, yaw, offset);
+    EXPECT_TRUE(b.T_item_query.isApprox(a.T_item_query, 1e-5));
+    EXPECT_NEAR(b.inlier_fraction, a.inlier_fraction, 1e-9);
+    EXPECT_NEAR(b.mean_squared_distance_m2, a.mean_squared_distance_m2, 1e-6 * a.mean_squared_distance_m2 + 1e-12);
+    EXPECT_TRUE(c.T_item_query.isApprox(a.T_item_query, 1e-4));
+    EXPECT_NEAR(c.trimmed_rms_m, a.trimmed_rms_m, 1e-4);
+  }
+}
+
 TEST(AlignmentTest, StridedSubsetSpreadsOverAllPoints) {
   EXPECT_EQ(StridedSubset(10, 0).size(), 10u);
   EXPECT_EQ(StridedSubset(10, 20).size(), 10u);

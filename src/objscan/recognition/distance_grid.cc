@@ -24,6 +24,9 @@ DistanceGrid::DistanceGrid(const std::vector<Eigen::Vector3f>& points, float tru
   nx_ = count(extent.x(), spacing);
   ny_ = count(extent.y(), spacing);
   nz_ = count(extent.z(), spacing);
+  max_cell_x_ = static_cast<float>(nx_ - 1);
+  max_cell_y_ = static_cast<float>(ny_ - 1);
+  max_cell_z_ = static_cast<float>(nz_ - 1);
   origin_ = lo;
   spacing_m_ = spacing;
   inv_spacing_ = 1.f / spacing;
@@ -60,6 +63,10 @@ DistanceGrid::DistanceGrid(const std::vector<Eigen::Vector3f>& points, float tru
   for (std::size_t i = 0; i < d2.size(); ++i) {
     values_[i] = static_cast<std::uint8_t>(std::min(255.f, std::round(std::sqrt(d2[i]) / step_m_)));
   }
+}
+
+void DistanceGrid::Distances(const Eigen::Vector3f* q, std::size_t n, float* distance) const {
+  for (std::size_t k = 0; k < n; ++k) distance[k] = Distance(q[k]);
 }
 
 }  // namespace objscan::recognition

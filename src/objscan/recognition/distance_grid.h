@@ -22,15 +22,19 @@ class DistanceGrid {
   float spacing_m() const { return spacing_m_; }
   std::size_t num_vertices() const { return values_.size(); }
 
+  // Distance() of q[0, n) into distance[0, n): one call for a batch, the lookups inlined in its loop.
+  void Distances(const Eigen::Vector3f* q, std::size_t n, float* distance) const;
+
   // Interpolated distance to the nearest point, at most truncation_m (which it is outside the grid).
   float Distance(const Eigen::Vector3f& q) const {
-    const Eigen::Vector3f g = (q - origin_) * inv_spacing_;
+    // Plain float arithmetic (no Eigen temporaries) keeps this small enough to inline into loops.
+    const float gx = (q.x() - origin_.x()) * inv_spacing_, gy = (q.y() - origin_.y()) * inv_spacing_,
+                gz = (q.z() - origin_.z()) * inv_spacing_;
     // Vertices [i, i + 1] in each dimension; the last cell is excluded so i + 1 stays inside.
-    if (!(g.x() >= 0.f && g.y() >= 0.f && g.z() >= 0.f && g.x() < static_cast<float>(nx_ - 1) &&
-          g.y() < static_cast<float>(ny_ - 1) && g.z() < static_cast<float>(nz_ - 1)))
+    if (!(gx >= 0.f && gy >= 0.f && gz >= 0.f && gx < max_cell_x_ && gy < max_cell_y_ && gz < max_cell_z_))
       return truncation_m_;
-    const int ix = static_cast<int>(g.x()), iy = static_cast<int>(g.y()), iz = static_cast<int>(g.z());
-    const float fx = g.x() - ix, fy = g.y() - iy, fz = g.z() - iz;
+    const int ix = static_cast<int>(gx), iy = static_cast<int>(gy), iz = static_cast<int>(gz);
+    const float fx = gx - ix, fy = gy - iy, fz = gz - iz;
     const std::uint8_t* v = values_.data() + (static_cast<std::size_t>(iz) * ny_ + iy) * nx_ + ix;
     const std::size_t sy = nx_, sz = static_cast<std::size_t>(nx_) * ny_;
     const float c00 = v[0] + fx * (v[1] - v[0]);
@@ -47,6 +51,7 @@ class DistanceGrid {
   float truncation_m_ = 0.f;
   float step_m_ = 0.f;  // metres per quantisation step: truncation_m / 255
   int nx_ = 0, ny_ = 0, nz_ = 0;
+  float max_cell_x_ = 0.f, max_cell_y_ = 0.f, max_cell_z_ = 0.f;  // n - 1 per axis
   std::vector<std::uint8_t> values_;  // x fastest
 };
 

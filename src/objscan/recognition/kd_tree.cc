@@ -1,6 +1,7 @@
 #include "objscan/recognition/kd_tree.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -26,12 +27,16 @@ int KdTree3::BuildNode(int begin, int end) {
   nodes_.emplace_back();
   nodes_[id].a = begin;
   nodes_[id].b = end;
-  if (end - begin <= kLeafSize) return id;
   Eigen::Vector3f lo = points_[order_[begin]], hi = lo;
   for (int i = begin + 1; i < end; ++i) {
     lo = lo.cwiseMin(points_[order_[i]]);
     hi = hi.cwiseMax(points_[order_[i]]);
   }
+  for (int d = 0; d < 3; ++d) {
+    nodes_[id].lo[d] = lo[d];
+    nodes_[id].hi[d] = hi[d];
+  }
+  if (end - begin <= kLeafSize) return id;
   int dim = 0;
   (hi - lo).maxCoeff(&dim);
   if (hi[dim] <= lo[dim]) return id;  // all points coincide: keep a leaf
@@ -49,9 +54,10 @@ int KdTree3::BuildNode(int begin, int end) {
   return id;
 }
 
-void KdTree3::Search(const Eigen::Vector3f& q, int* best, float* best_d2) const {
-  // Depth-first, near side first, with an explicit stack of (node, squared distance to its slab).
-  // Median splits keep the depth below 32 for any int-sized point count.
+void KdTree3::SearchNear(const Eigen::Vector3f& q, int* best, float* best_d2) const {
+  // Depth-first, near side first, with an explicit stack of (node, squared distance to its slab):
+  // the cheapest walk when a good bound (a hint) prunes most of the tree anyway. Median splits keep
+  // the depth below 32 for any int-sized point count.
   struct Pending {
     std::int32_t node;
     float bound_d2;
@@ -87,6 +93,57 @@ void KdTree3::Search(const Eigen::Vector3f& q, int* best, float* best_d2) const 
   }
 }
 
+void KdTree3::Search(const Eigen::Vector3f& q, int* best, float* best_d2) const {
+  // Depth-first, nearer child first (by the squared distance to the children's bounds), with an
+  // explicit stack of the deferred children and their distances. Median splits keep the depth below
+  // 32 for any int-sized point count.
+  struct Pending {
+    std::int32_t node;
+    float d2;
+  };
+  Pending stack[64];
+  int top = 0;
+  const Node* nodes = nodes_.data();
+  const Eigen::Vector3f* pts = ordered_.data();
+  const float qx = q.x(), qy = q.y(), qz = q.z();
+  stack[top++] = {0, BoxDistance2(nodes[0], qx, qy, qz)};
+  float bd2 = *best_d2;
+  int bi = *best;
+  while (top > 0) {
+    const Pending p = stack[--top];
+    if (p.d2 >= bd2) continue;
+    int id = p.node;
+    // Walk down to a leaf, always into the nearer child, deferring the other when it may matter.
+    bool pruned = false;
+    while (nodes[id].dim >= 0) {
+      const int left = id + 1, right = nodes[id].a;
+      const float dl = BoxDistance2(nodes[left], qx, qy, qz);
+      const float dr = BoxDistance2(nodes[right], qx, qy, qz);
+      const bool left_first = dl < dr || (dl == dr && q[nodes[id].dim] < nodes[id].split);
+      const int near = left_first ? left : right, far = left_first ? right : left;
+      const float near_d2 = left_first ? dl : dr, far_d2 = left_first ? dr : dl;
+      if (far_d2 < bd2) stack[top++] = {far, far_d2};
+      if (near_d2 >= bd2) {
+        pruned = true;
+        break;
+      }
+      id = near;
+    }
+    if (pruned) continue;
+    const Node& leaf = nodes[id];
+    for (int i = leaf.a; i < leaf.b; ++i) {
+      const float dx = pts[i].x() - qx, dy = pts[i].y() - qy, dz = pts[i].z() - qz;
+      const float d2 = dx * dx + dy * dy + dz * dz;
+      if (d2 < bd2) {
+        bd2 = d2;
+        bi = i;
+      }
+    }
+  }
+  *best_d2 = bd2;
+  *best = bi;
+}
+
 int KdTree3::Nearest(const Eigen::Vector3f& q, float* squared_distance) const {
   if (points_.empty()) {
     if (squared_distance) *squared_distance = std::numeric_limits<float>::infinity();
@@ -106,7 +163,7 @@ int KdTree3::Nearest(const Eigen::Vector3f& q, float* squared_distance) const {
 int KdTree3::NearestBounded(const Eigen::Vector3f& q, float bound_d2, int hint, float* squared_distance) const {
   int best = -1;
   float best_d2 = bound_d2;
-  if (!points_.empty()) Search(q, &best, &best_d2);
+  if (!points_.empty()) SearchNear(q, &best, &best_d2);
   if (best < 0) {
     if (squared_distance) *squared_distance = hint >= 0 ? bound_d2 : std::numeric_limits<float>::infinity();
     return hint;

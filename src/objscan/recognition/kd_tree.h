@@ -3,6 +3,7 @@
 // and k nearest neighbours. Used by Lloyd relaxation, alignment (ICP) and objectness, where a query
 // touches a few hundred to a few thousand points many times.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -32,16 +33,30 @@ class KdTree3 {
                 std::vector<float>* squared_distances) const;
 
  private:
-  // Nodes in preorder: an inner node's left child is the next node. 16 bytes, four per cache line.
+  // Nodes in preorder: an inner node's left child is the next node.
   struct Node {
     std::int32_t dim = -1;  // leaf when < 0
     float split = 0.f;
     std::int32_t a = 0;     // inner: right child; leaf: first point (in ordered_)
     std::int32_t b = 0;     // leaf: one past the last point
+    // Tight bounds of the node's points: a query far outside the set prunes by them, where the
+    // split planes alone leave the outer cells unbounded.
+    float lo[3] = {0.f, 0.f, 0.f};
+    float hi[3] = {0.f, 0.f, 0.f};
   };
+  // Squared distance from q to the node's bounds.
+  static float BoxDistance2(const Node& n, float qx, float qy, float qz) {
+    const float dx = std::max(0.f, std::max(n.lo[0] - qx, qx - n.hi[0]));
+    const float dy = std::max(0.f, std::max(n.lo[1] - qy, qy - n.hi[1]));
+    const float dz = std::max(0.f, std::max(n.lo[2] - qz, qz - n.hi[2]));
+    return dx * dx + dy * dy + dz * dz;
+  }
   int BuildNode(int begin, int end);
   // Returns the ordered_ index of the nearest point closer than *best_d2 (or *best unchanged).
+  // Search prunes by the nodes' bounds (for unbounded queries, also far from the points);
+  // SearchNear by the split planes only, cheaper per node when *best_d2 is already small.
   void Search(const Eigen::Vector3f& q, int* best, float* best_d2) const;
+  void SearchNear(const Eigen::Vector3f& q, int* best, float* best_d2) const;
 
   std::vector<Eigen::Vector3f> points_;
   std::vector<Eigen::Vector3f> ordered_;  // points_ in leaf order: leaves scan contiguous memory
