@@ -2,6 +2,7 @@
 // process, --jobs at a time, resumable, shardable) and write the report (see `objscan report`).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -113,7 +114,10 @@ int RunBench(const BenchArgs& a) {
 
   const std::string out = fs::absolute(a.out).lexically_normal().string();
   const std::vector<eval::BenchJob> jobs = eval::ShardJobs(eval::MakeJobs(suite.scenes, methods, out), shard);
-  const std::vector<eval::BenchJob> pending = eval::PendingJobs(jobs);
+  std::vector<eval::BenchJob> pending = eval::PendingJobs(jobs);
+  // The short frontier runs last, so the parallel runs end together instead of one long run alone.
+  std::stable_partition(pending.begin(), pending.end(),
+                        [](const eval::BenchJob& job) { return job.method.name != "frontier"; });
   std::fprintf(stderr, "objscan bench: suite %s, %zu scenes x %zu methods; shard %d/%d: %zu runs, %zu done, %zu to run\n",
                suite.name.c_str(), suite.scenes.size(), methods.size(), shard.index, shard.count, jobs.size(),
                jobs.size() - pending.size(), pending.size());
@@ -156,7 +160,7 @@ int RunBench(const BenchArgs& a) {
       if (job.method.database_without_parts) {
         EnsureDatabase(no_parts, "the database without component and pair entries", [&] {
           const recognition::ModelDatabase db = recognition::ModelDatabase::Load(base);
-          return eval::BuildDatabaseWithoutParts(db, TerminalProgress("db no-parts"));
+          return eval::DatabaseWithoutParts(db);
         });
       }
     }

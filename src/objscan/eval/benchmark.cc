@@ -340,12 +340,25 @@ std::vector<recognition::ModelSource> ModelSourcesOf(const recognition::ModelDat
   return sources;
 }
 
-recognition::ModelDatabase BuildDatabaseWithoutParts(const recognition::ModelDatabase& database,
-                                                     const ProgressCallback& progress) {
-  recognition::DatabaseBuildOptions options = BuildOptionsOf(database);
-  options.include_components = false;
-  options.include_pairs = false;
-  return recognition::BuildDatabase(ModelSourcesOf(database), options, progress);
+recognition::ModelDatabase DatabaseWithoutParts(const recognition::ModelDatabase& database) {
+  recognition::ModelDatabase out;
+  out.mutable_settings() = database.settings();
+  out.set_vocabulary(database.vocabulary());
+  out.mutable_models() = database.models();
+  std::vector<int> new_index(database.entries().size(), -1);
+  for (std::size_t i = 0; i < database.entries().size(); ++i) {
+    const recognition::DatabaseEntry& e = database.entries()[i];
+    if (e.kind != recognition::EntryKind::kFullModel) continue;
+    new_index[i] = static_cast<int>(out.entries().size());
+    out.mutable_entries().push_back(e);
+  }
+  for (recognition::DatabaseModel& m : out.mutable_models()) {
+    m.full_entry = m.full_entry >= 0 && m.full_entry < static_cast<int>(new_index.size())
+                       ? new_index[static_cast<std::size_t>(m.full_entry)]
+                       : -1;
+  }
+  out.Finalize();
+  return out;
 }
 
 std::vector<recognition::ModelSource> ModelDisjointSources(const std::vector<WorldModels>& worlds,

@@ -130,10 +130,10 @@ std::vector<ChildOutcome> RunChildProcesses(const std::vector<ChildCommand>& com
 recognition::DatabaseBuildOptions BuildOptionsOf(const recognition::ModelDatabase& database);
 // Model sources that rebuild the models of a database (from their mesh files or procedural recipes).
 std::vector<recognition::ModelSource> ModelSourcesOf(const recognition::ModelDatabase& database);
-// The variant of a database without component and pair entries (paper Fig. 14): the same models,
-// built with include_components = include_pairs = false.
-recognition::ModelDatabase BuildDatabaseWithoutParts(const recognition::ModelDatabase& database,
-                                                     const ProgressCallback& progress = nullptr);
+// The variant of a database without component and pair entries (paper Fig. 14): the same models and
+// full-model entries, vocabulary and description settings, with every component and pair entry left
+// out (copied, not rebuilt: only the entries differ between the two databases).
+recognition::ModelDatabase DatabaseWithoutParts(const recognition::ModelDatabase& database);
 
 // Model-disjoint databases from worlds (OASC): the models of every world except `test_index`,
 // leaving out every model id (SceneObject::model_name) that occurs in the test world, each id once,

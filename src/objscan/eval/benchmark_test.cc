@@ -11,6 +11,8 @@
 
 #include "objscan/common/error.h"
 #include "objscan/geometry/mesh.h"
+#include "objscan/recognition/recognizer.h"
+#include "objscan/recognition/test_database.h"
 
 namespace objscan::eval {
 namespace {
@@ -241,6 +243,37 @@ world::SceneObject Object(const std::string& model, world::Category category) {
   o.category = category;
   o.mesh = geometry::MakeBox(Eigen::Vector3d(0.5, 0.5, 0.5));
   return o;
+}
+
+// Fig. 14's variant: the same models and full-model entries (same descriptions), no part entries,
+// and retrieval over full models answers as with the whole database.
+TEST(WorldDatabaseTest, DatabaseWithoutPartsKeepsOnlyFullModels) {
+  using namespace recognition;
+  const ModelDatabase db = BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions());
+  std::size_t parts = 0;
+  for (const auto& e : db.entries()) parts += e.kind != EntryKind::kFullModel;
+  ASSERT_GT(parts, 0u);
+  const ModelDatabase no_parts = DatabaseWithoutParts(db);
+  ASSERT_TRUE(no_parts.finalized());
+  EXPECT_EQ(no_parts.entries().size(), db.entries().size() - parts);
+  ASSERT_EQ(no_parts.models().size(), db.models().size());
+  for (std::size_t m = 0; m < db.models().size(); ++m) {
+    const int e = no_parts.models()[m].full_entry;
+    ASSERT_GE(e, 0);
+    EXPECT_EQ(no_parts.entries()[e].kind, EntryKind::kFullModel);
+    EXPECT_EQ(no_parts.entries()[e].model_index, static_cast<int>(m));
+    EXPECT_EQ(no_parts.entries()[e].keypoints, db.entries()[db.models()[m].full_entry].keypoints);
+  }
+  EXPECT_EQ(no_parts.vocabulary().num_words(), db.vocabulary().num_words());
+  // A table seen whole: the same best full model from both databases.
+  const Recognizer with(db, RecognitionOptions()), without(no_parts, RecognitionOptions());
+  geometry::PointCloud table;
+  testing::TableLike(0.012, &table.points, &table.normals);
+  const auto a = with.Retrieve(with.Describe(table), RetrievalScope::kFullModels);
+  const auto b = without.Retrieve(without.Describe(table), RetrievalScope::kAllEntries);
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(b.empty());
+  EXPECT_EQ(db.entries()[a[0].entry].model_index, no_parts.entries()[b[0].entry].model_index);
 }
 
 TEST(WorldDatabaseTest, ModelDisjointSources) {

@@ -158,6 +158,15 @@ void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame) {
       const geometry::VoxelKey k = geometry::KeyOf(p, inv);
       int best = -1;
       float best_d = 1e9f;
+      // The voxel holding p has the nearest centre of all: when it is of the instance, it is the one.
+      auto own = m.voxel_index.find(k);
+      if (own != m.voxel_index.end() && voxels[own->second].instance == instance) {
+        if (!seen[own->second]) {
+          seen[own->second] = 1;
+          seen_list.push_back(own->second);
+        }
+        continue;
+      }
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {

@@ -22,8 +22,18 @@ void OccupancyMapOptions::Validate() const {
 }
 
 struct OccupancyMap::Impl {
-  explicit Impl(double resolution) : tree(resolution) {}
+  explicit Impl(double resolution) : tree(resolution), resolution_m(resolution) {}
   octomap::OcTree tree;
+  double resolution_m;
+  // Bounds of every voxel a ray has touched, kept as rays come in (OcTree::getMetricMin/Max walk
+  // every leaf after each insertion): a ray's voxels lie between its start and end voxels, grown by
+  // one voxel for the traversal's rounding at voxel faces.
+  geometry::Aabb3 known_box;
+  void ExtendKnown(const Eigen::Vector3d& p) {
+    const Eigen::Vector3d lo = (p / resolution_m).array().floor() * resolution_m;
+    known_box.Extend(lo - Eigen::Vector3d::Constant(resolution_m));
+    known_box.Extend(lo + Eigen::Vector3d::Constant(2.0 * resolution_m));
+  }
 };
 
 OccupancyMap::OccupancyMap(const OccupancyMapOptions& options) : options_(options) {
@@ -68,7 +78,16 @@ void OccupancyMap::InsertRays(const Eigen::Vector3d& origin, const std::vector<E
   // Floor rays first (free space only), then the hits, so a hit wins over a floor ray in one frame.
   octomap::KeySet floor_free;
   octomap::KeyRay ray;
+  impl_->ExtendKnown(origin);
   for (const Eigen::Vector3f& p : end_points) {
+    if (!(floor_z > 0.0 && p.z() < floor_z)) {
+      // Rays end at the range limit (insertPointCloud clips them there).
+      Eigen::Vector3d reach = p.cast<double>();
+      if ((reach - origin).norm() > options_.max_range_m) {
+        reach = origin + (reach - origin).normalized() * options_.max_range_m;
+      }
+      impl_->ExtendKnown(reach);
+    }
     if (floor_z > 0.0 && p.z() < floor_z) {
       if (origin.z() <= floor_z) continue;
       // Clear the ray up to where it comes down to floor_z (and never beyond the range limit).
@@ -78,6 +97,7 @@ void OccupancyMap::InsertRays(const Eigen::Vector3d& origin, const std::vector<E
       if ((end - origin).norm() > options_.max_range_m) {
         end = origin + (end - origin).normalized() * options_.max_range_m;
       }
+      impl_->ExtendKnown(end);
       if (tree.computeRayKeys(o, octomap::point3d(end.x(), end.y(), end.z()), ray)) {
         floor_free.insert(ray.begin(), ray.end());
       }
@@ -130,17 +150,7 @@ std::size_t OccupancyMap::NumOccupied() const {
   return n;
 }
 
-geometry::Aabb3 OccupancyMap::KnownBounds() const {
-  geometry::Aabb3 box;
-  const octomap::OcTree& tree = impl_->tree;
-  if (tree.size() == 0) return box;
-  double x0, y0, z0, x1, y1, z1;
-  tree.getMetricMin(x0, y0, z0);
-  tree.getMetricMax(x1, y1, z1);
-  box.Extend(Eigen::Vector3d(x0, y0, z0));
-  box.Extend(Eigen::Vector3d(x1, y1, z1));
-  return box;
-}
+geometry::Aabb3 OccupancyMap::KnownBounds() const { return impl_->known_box; }
 
 sim::OccupancyGrid2D OccupancyMap::Grid(double min_z_m, double max_z_m, double cell_size_m) const {
   return GridOver(KnownBounds(), min_z_m, max_z_m, cell_size_m);

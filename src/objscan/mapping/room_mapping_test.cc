@@ -77,6 +77,34 @@ TEST(OccupancyMapTest, FreeOccupiedUnknownAndNavigationGrid) {
   EXPECT_GT(occupied, 100u);
 }
 
+// KnownBounds (kept as rays come in) holds every known voxel and is tight: on each side a known
+// voxel lies within three voxels of the box face. Two views, one of them looking at the floor.
+TEST(OccupancyMapTest, KnownBoundsHoldTheKnownVoxelsTightly) {
+  const AnalyticWorld room = Room();
+  OccupancyMap occupancy;
+  occupancy.Integrate(room.Render(View(Eigen::Vector3d(0, -0.5, 1.2), 90, -25), nullptr));
+  occupancy.Integrate(room.Render(View(Eigen::Vector3d(-1.0, 0.0, 1.0), 200, -40), nullptr));
+  const geometry::Aabb3 box = occupancy.KnownBounds();
+  ASSERT_FALSE(box.Empty());
+  const double r = occupancy.resolution_m();
+  Eigen::Vector3d known_min = Eigen::Vector3d::Constant(1e9), known_max = -known_min;
+  for (double z = -0.5 * r; z < 3.0; z += r) {
+    for (double y = -2.0 + 0.5 * r; y < 2.0; y += r) {
+      for (double x = -2.5 + 0.5 * r; x < 2.5; x += r) {
+        const Eigen::Vector3d c(x, y, z);
+        if (occupancy.Query(c) == Occupancy::kUnknown) continue;
+        EXPECT_TRUE(box.Contains(c)) << c.transpose();
+        known_min = known_min.cwiseMin(c);
+        known_max = known_max.cwiseMax(c);
+      }
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(known_min[a] - box.min_m[a], 3.0 * r) << "axis " << a;
+    EXPECT_LT(box.max_m[a] - known_max[a], 3.0 * r) << "axis " << a;
+  }
+}
+
 // The navigator takes the band from 2 cm up: floor hits (z ~ 0 with noise) fall in the voxel layer
 // [0, 5 cm] and would block the whole floor unless floor end points only clear space.
 TEST(OccupancyMapTest, FloorEndPointsClearSpaceButNeverBlock) {

@@ -92,6 +92,8 @@ class AlignmentTarget {
   static constexpr int kNearestGridMaxCells = 8192;
   static constexpr float kNearestGridMinCellM = 0.02f;
   void EnableNearestGrid(float band_m, int max_cells, float min_cell_m);
+  // Correspondences from the kd-tree only (for targets met too rarely to repay building the grid).
+  void DisableNearestGrid() { nearest_grid_.reset(); }
   // nullptr when not enabled.
   const NearestGrid* nearest_grid() const;
 

@@ -324,7 +324,9 @@ TEST(IncrementalSegmenterTest, IncrementalAdjacencyEqualsRecomputingIt) {
     for (std::int32_t l : copy.Labels()) copy.RelabelAll({l}, l);
     IncrementalSegmenter fresh(options);
     const ComponentGraph& full = fresh.Components(&copy);
-    if (round > 0) EXPECT_LT(incremental.changed_labels().size(), graph.size() / 4) << "round " << round;
+    if (round > 0) {
+      EXPECT_LT(incremental.changed_labels().size(), graph.size() / 4) << "round " << round;
+    }
     ASSERT_EQ(graph.size(), full.size()) << "round " << round;
     EXPECT_EQ(graph.Edges(), full.Edges()) << "round " << round;
     max_edges = std::max(max_edges, full.Edges().size());
