@@ -42,6 +42,20 @@ bool StructureResult::OnStructure(const Eigen::Vector3d& p, double distance_m) c
   return false;
 }
 
+bool StructureResult::InWallReveal(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double depth_m,
+                                   double max_cos) const {
+  for (const WallPlane& w : walls) {
+    const double d = w.SignedDistance(p);
+    if (d >= 0.0 || d <= -depth_m) continue;
+    if (std::fabs(n.dot(w.normal)) >= max_cos) continue;
+    const double s = w.Along(p);
+    if (s >= w.span_min_m && s <= w.span_max_m && p.z() >= w.z_min_m - depth_m && p.z() <= w.z_max_m + depth_m) {
+      return true;
+    }
+  }
+  return false;
+}
+
 StructureDetector::StructureDetector(const StructureOptions& options) : options_(options) { options_.Validate(); }
 
 namespace {

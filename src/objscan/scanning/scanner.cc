@@ -419,8 +419,16 @@ struct Scanner::State {
     const double fraction = config.scanner.structure_residue_fraction;
     if (fraction >= 1.0 || c.points.empty()) return false;
     const double d = config.scanner.structure_residue_distance_m;
+    const double reveal_m = config.scanner.structure_reveal_depth_m;
+    // Across a wall: the element normal within 60 degrees of the wall's direction.
+    constexpr double kRevealMaxCos = 0.5;
     std::size_t near = 0;
-    for (const auto& p : c.points) near += structure.OnStructure(p.cast<double>(), d);
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const Eigen::Vector3d p = c.points[i].cast<double>();
+      near += structure.OnStructure(p, d) ||
+              (reveal_m > 0.0 && i < c.normals.size() &&
+               structure.InWallReveal(p, c.normals[i].cast<double>(), reveal_m, kRevealMaxCos));
+    }
     return static_cast<double>(near) >= fraction * static_cast<double>(c.points.size());
   }
 

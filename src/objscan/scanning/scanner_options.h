@@ -41,6 +41,9 @@ struct ScannerOptions {
   // bridge two objects in the graph cut. 1.0 or more = off (the paper's behaviour).
   double structure_residue_fraction = 0.8;
   double structure_residue_distance_m = 0.04;
+  // ... and so do points inside a wall's thickness on faces across it, up to this depth behind the
+  // wall plane: the reveals of door and window openings (StructureResult::InWallReveal). 0 = off.
+  double structure_reveal_depth_m = 0.3;
   // Floor and walls are searched again only when the map grew by this share since the last search;
   // in between, new elements are tagged with the known planes (0 = search every step).
   double structure_redetect_growth = 0.1;
@@ -67,6 +70,7 @@ struct ScannerOptions {
     v("min_view_separation_deg", min_view_separation_deg);
     v("structure_residue_fraction", structure_residue_fraction);
     v("structure_residue_distance_m", structure_residue_distance_m);
+    v("structure_reveal_depth_m", structure_reveal_depth_m);
     v("structure_redetect_growth", structure_redetect_growth);
     v("fragments", fragments);
     v("threads", threads);
@@ -88,6 +92,7 @@ struct ScannerOptions {
     config::RequireInRange("scanner.min_view_separation_deg", min_view_separation_deg, 0.0, 180.0);
     config::RequireNonNegative("scanner.structure_residue_fraction", structure_residue_fraction);
     config::RequireNonNegative("scanner.structure_residue_distance_m", structure_residue_distance_m);
+    config::RequireNonNegative("scanner.structure_reveal_depth_m", structure_reveal_depth_m);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
     fragments.Validate();
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");

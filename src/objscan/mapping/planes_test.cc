@@ -1,0 +1,42 @@
+#include "objscan/mapping/planes.h"
+
+#include <gtest/gtest.h>
+
+namespace objscan::mapping {
+namespace {
+
+// One wall: the plane x = 0 facing +x (the room), spanning y in [0, 4] and z in [0, 2.5].
+StructureResult OneWall() {
+  StructureResult s;
+  WallPlane w;
+  w.normal = Eigen::Vector3d::UnitX();
+  w.offset_m = 0.0;
+  w.z_min_m = 0.0;
+  w.z_max_m = 2.5;
+  // Along = -n.y x + n.x y = y.
+  w.span_min_m = 0.0;
+  w.span_max_m = 4.0;
+  s.walls.push_back(w);
+  return s;
+}
+
+TEST(StructureResultTest, RevealFacesInsideTheWallThicknessBelongToTheWall) {
+  const StructureResult s = OneWall();
+  const Eigen::Vector3d across(0, 1, 0), down(0, 0, -1), facing_room(1, 0, 0);
+  // The side and the top of an opening, 5 cm into a 10 cm wall.
+  EXPECT_TRUE(s.InWallReveal({-0.05, 1.0, 1.0}, across, 0.3, 0.5));
+  EXPECT_TRUE(s.InWallReveal({-0.05, 1.5, 2.0}, down, 0.3, 0.5));
+  // A window pane recessed in the opening faces the room: not a reveal.
+  EXPECT_FALSE(s.InWallReveal({-0.08, 1.5, 1.0}, facing_room, 0.3, 0.5));
+  // In front of the wall (a cabinet side standing against it), too deep, or beyond the span.
+  EXPECT_FALSE(s.InWallReveal({0.05, 1.0, 1.0}, across, 0.3, 0.5));
+  EXPECT_FALSE(s.InWallReveal({-0.4, 1.0, 1.0}, across, 0.3, 0.5));
+  EXPECT_FALSE(s.InWallReveal({-0.05, 4.5, 1.0}, across, 0.3, 0.5));
+  // OnStructure is about the plane itself: the reveal point is within 6 cm, not within 4 cm.
+  EXPECT_FALSE(s.OnStructure({-0.05, 1.0, 1.0}, 0.04));
+  EXPECT_TRUE(s.OnStructure({-0.05, 1.0, 1.0}, 0.06));
+  EXPECT_FALSE(StructureResult().InWallReveal({-0.05, 1.0, 1.0}, across, 0.3, 0.5));
+}
+
+}  // namespace
+}  // namespace objscan::mapping
