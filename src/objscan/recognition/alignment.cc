@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <mutex>
 
@@ -41,48 +42,35 @@ AlignmentTarget::AlignmentTarget(const std::vector<Eigen::Vector3f>& item_points
   }
 }
 
+template <class Grid>
 struct AlignmentTarget::LazyGrid {
-  float truncation_m = 0.f;
-  int max_vertices = 0;
-  float min_spacing_m = 0.f;
+  std::function<Grid(const std::vector<Eigen::Vector3f>&)> build;
   std::once_flag once;
-  DistanceGrid grid;
+  Grid grid;
+  const Grid* Get(const std::vector<Eigen::Vector3f>& points) {
+    std::call_once(once, [&] { grid = build(points); });
+    return &grid;
+  }
 };
 
 void AlignmentTarget::EnableDistanceGrid(float truncation_m, int max_vertices, float min_spacing_m) {
-  grid_ = std::make_shared<LazyGrid>();
-  grid_->truncation_m = truncation_m;
-  grid_->max_vertices = max_vertices;
-  grid_->min_spacing_m = min_spacing_m;
+  grid_ = std::make_shared<LazyGrid<DistanceGrid>>();
+  grid_->build = [=](const std::vector<Eigen::Vector3f>& points) {
+    return DistanceGrid(points, truncation_m, max_vertices, min_spacing_m);
+  };
 }
 
-const DistanceGrid* AlignmentTarget::distance_grid() const {
-  if (!grid_) return nullptr;
-  LazyGrid& g = *grid_;
-  std::call_once(g.once, [&] { g.grid = DistanceGrid(tree_.points(), g.truncation_m, g.max_vertices, g.min_spacing_m); });
-  return &g.grid;
-}
-
-struct AlignmentTarget::LazyNearestGrid {
-  float band_m = 0.f;
-  int max_cells = 0;
-  float min_cell_m = 0.f;
-  std::once_flag once;
-  NearestGrid grid;
-};
+const DistanceGrid* AlignmentTarget::distance_grid() const { return grid_ ? grid_->Get(tree_.points()) : nullptr; }
 
 void AlignmentTarget::EnableNearestGrid(float band_m, int max_cells, float min_cell_m) {
-  nearest_grid_ = std::make_shared<LazyNearestGrid>();
-  nearest_grid_->band_m = band_m;
-  nearest_grid_->max_cells = max_cells;
-  nearest_grid_->min_cell_m = min_cell_m;
+  nearest_grid_ = std::make_shared<LazyGrid<NearestGrid>>();
+  nearest_grid_->build = [=](const std::vector<Eigen::Vector3f>& points) {
+    return NearestGrid(points, band_m, max_cells, min_cell_m);
+  };
 }
 
 const NearestGrid* AlignmentTarget::nearest_grid() const {
-  if (!nearest_grid_) return nullptr;
-  LazyNearestGrid& g = *nearest_grid_;
-  std::call_once(g.once, [&] { g.grid = NearestGrid(tree_.points(), g.band_m, g.max_cells, g.min_cell_m); });
-  return &g.grid;
+  return nearest_grid_ ? nearest_grid_->Get(tree_.points()) : nullptr;
 }
 
 namespace {

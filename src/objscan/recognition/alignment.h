@@ -98,11 +98,13 @@ class AlignmentTarget {
   const NearestGrid* nearest_grid() const;
 
  private:
+  // A grid over the item points, built from them on first use (thread-safe); shared by copies and
+  // immutable once built.
+  template <class Grid>
   struct LazyGrid;
-  struct LazyNearestGrid;
   KdTree3 tree_;
-  std::shared_ptr<LazyGrid> grid_;  // shared by copies; immutable once built
-  std::shared_ptr<LazyNearestGrid> nearest_grid_;
+  std::shared_ptr<LazyGrid<DistanceGrid>> grid_;
+  std::shared_ptr<LazyGrid<NearestGrid>> nearest_grid_;
   geometry::Aabb3 bounds_;
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
 };

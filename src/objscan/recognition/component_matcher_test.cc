@@ -10,23 +10,14 @@ namespace objscan::recognition {
 namespace {
 
 // Both ways of describing a union: composed from the cached parts (default) and from its points.
-class ComponentMatcherTest : public ::testing::TestWithParam<bool> {
+class ComponentMatcherTest : public testing::ShapeDatabaseSuite<::testing::TestWithParam<bool>> {
  protected:
-  static void SetUpTestSuite() {
-    db_ = new ModelDatabase(BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions()));
-  }
-  static void TearDownTestSuite() {
-    delete db_;
-    db_ = nullptr;
-  }
   static RecognitionOptions Options() {
     RecognitionOptions options;
     options.compose_unions = GetParam();
     return options;
   }
-  static ModelDatabase* db_;
 };
-ModelDatabase* ComponentMatcherTest::db_ = nullptr;
 
 TEST_P(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
   const ModelDatabase& db = *db_;

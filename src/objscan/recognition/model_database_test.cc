@@ -16,15 +16,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ModelDatabaseTest : public ::testing::Test {
+class ModelDatabaseTest : public testing::ShapeDatabaseSuite<> {
  protected:
-  static void SetUpTestSuite() {
-    db_ = new ModelDatabase(BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions()));
-  }
-  static void TearDownTestSuite() {
-    delete db_;
-    db_ = nullptr;
-  }
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("objscan_db_test_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
@@ -50,10 +43,8 @@ class ModelDatabaseTest : public ::testing::Test {
     }
   }
 
-  static ModelDatabase* db_;
   fs::path dir_;
 };
-ModelDatabase* ModelDatabaseTest::db_ = nullptr;
 
 TEST_F(ModelDatabaseTest, HoldsFullModelsComponentsAndPairsWithTheModelsCategory) {
   const ModelDatabase& db = *db_;

@@ -10,18 +10,7 @@
 namespace objscan::recognition {
 namespace {
 
-class RecognizerTest : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    db_ = new ModelDatabase(BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions()));
-  }
-  static void TearDownTestSuite() {
-    delete db_;
-    db_ = nullptr;
-  }
-  static ModelDatabase* db_;
-};
-ModelDatabase* RecognizerTest::db_ = nullptr;
+using RecognizerTest = testing::ShapeDatabaseSuite<>;
 
 // A fresh, differently spaced sampling of a shape, placed in the world by T_world_model and
 // optionally cut to what a camera on the model's +x side sees of its front 70 %.
