@@ -19,19 +19,26 @@ class ComponentMatcherTest : public testing::ShapeDatabaseSuite<::testing::TestW
   }
 };
 
-TEST_P(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
-  const ModelDatabase& db = *db_;
-  const Recognizer recognizer(db, Options());
-  // The scene: the analytic table as components (top 1, legs 2..5), moved in the world.
+// The analytic table as a component graph (top 1, legs 2..5), moved by `offset` in the world, every
+// component at `revision`.
+segmentation::ComponentGraph TableGraph(const Eigen::Vector3f& offset, std::uint64_t revision = 0) {
   ModelScan table = testing::TableScanWithComponents(0.011);
   std::vector<segmentation::Component> comps = table.components.components();
   std::vector<std::vector<std::int32_t>> neighbors;
   for (auto& c : comps) {
-    for (auto& p : c.points) p += Eigen::Vector3f(2.0f, 1.0f, 0.f);
+    for (auto& p : c.points) p += offset;
+    c.revision = revision;
     neighbors.push_back(table.components.Neighbors(c.label));
   }
   segmentation::ComponentGraph graph;
   graph.Assign(comps, neighbors);
+  return graph;
+}
+
+TEST_P(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
+  const ModelDatabase& db = *db_;
+  const Recognizer recognizer(db, Options());
+  const segmentation::ComponentGraph graph = TableGraph(Eigen::Vector3f(2.0f, 1.0f, 0.f));
   RecognizerComponentMatcher matcher(recognizer, 1);
   matcher.SetComponents(&graph);
 
@@ -59,24 +66,14 @@ TEST_P(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
 // old points must not answer for it.
 TEST_P(ComponentMatcherTest, ChangedComponentIsDescribedAnew) {
   const Recognizer recognizer(*db_, Options());
-  ModelScan table = testing::TableScanWithComponents(0.011);
-  std::vector<segmentation::Component> comps = table.components.components();
-  std::vector<std::vector<std::int32_t>> neighbors;
-  for (auto& c : comps) neighbors.push_back(table.components.Neighbors(c.label));
-  segmentation::ComponentGraph graph;
-  graph.Assign(comps, neighbors);
+  const segmentation::ComponentGraph graph = TableGraph(Eigen::Vector3f::Zero(), 1);
   RecognizerComponentMatcher matcher(recognizer, 1);
   matcher.SetComponents(&graph);
   const auto before = matcher.Match({1, 2, 3, 4, 5}, segmentation::MatchScope::kFullModels);
   ASSERT_FALSE(before.models.empty());
 
   // The whole table moves 3 m along x; every component gets a new revision.
-  for (auto& c : comps) {
-    for (auto& p : c.points) p += Eigen::Vector3f(3.0f, 0.f, 0.f);
-    c.revision += 1;
-  }
-  segmentation::ComponentGraph moved;
-  moved.Assign(comps, neighbors);
+  const segmentation::ComponentGraph moved = TableGraph(Eigen::Vector3f(3.0f, 0.f, 0.f), 2);
   matcher.SetComponents(&moved);
   const auto after = matcher.MatchBatch({{1, 2, 3, 4, 5}, {1}}, segmentation::MatchScope::kFullModels);
   ASSERT_FALSE(after[0].models.empty());
