@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "objscan/recognition/test_database.h"
+#include "objscan/recognition/shape_database_suite.h"
 
 namespace objscan::recognition {
 namespace {

@@ -9,7 +9,7 @@
 #include <iterator>
 
 #include "objscan/common/error.h"
-#include "objscan/recognition/test_database.h"
+#include "objscan/recognition/shape_database_suite.h"
 
 namespace objscan::recognition {
 namespace {

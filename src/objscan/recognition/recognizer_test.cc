@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "objscan/geometry/pose.h"
-#include "objscan/recognition/test_database.h"
+#include "objscan/recognition/shape_database_suite.h"
 
 namespace objscan::recognition {
 namespace {

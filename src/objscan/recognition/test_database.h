@@ -1,8 +1,6 @@
 #pragma once
 // A small database of analytic shapes for the recognition tests (no scanning): chair, table (with
 // components: top and legs), shelves, sofa, cabinet.
-#include <gtest/gtest.h>
-
 #include <string>
 #include <vector>
 
@@ -71,18 +69,5 @@ inline std::vector<ScannedModel> ShapeModels(double spacing_m) {
   add(world::Category::kCabinet, "cabinet/a", ShapeScan(&CabinetLike, spacing_m));
   return models;
 }
-
-// A test suite sharing one database of the shapes above, built once per suite. `Base` is
-// ::testing::Test or a ::testing::TestWithParam<T>.
-template <class Base = ::testing::Test>
-class ShapeDatabaseSuite : public Base {
- protected:
-  static void SetUpTestSuite() { db_ = new ModelDatabase(BuildDatabaseFromScans(ShapeModels(0.01), SmallDatabaseOptions())); }
-  static void TearDownTestSuite() {
-    delete db_;
-    db_ = nullptr;
-  }
-  static inline ModelDatabase* db_ = nullptr;
-};
 
 }  // namespace objscan::recognition::testing
