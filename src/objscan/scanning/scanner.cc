@@ -244,15 +244,39 @@ struct Scanner::State {
     record.trajectory.push_back(s);
   }
 
+  // The inner waypoints of a driven path as trajectory samples (no view), so the path drawn and
+  // written is the one driven; time spread along the path by length, heading along each segment.
+  void AddPathSamples(const sim::Path2D& path, double camera_z_m, double start_s, double end_s, int step_index) {
+    const auto& w = path.waypoints;
+    if (w.size() < 3 || !(path.length_m > 0.0)) return;
+    double along_m = 0.0;
+    for (std::size_t i = 1; i + 1 < w.size(); ++i) {
+      along_m += (w[i] - w[i - 1]).norm();
+      TrajectorySample t;
+      t.time_s = start_s + (end_s - start_s) * std::min(1.0, along_m / path.length_m);
+      t.x_m = w[i].x();
+      t.y_m = w[i].y();
+      const Eigen::Vector2d d = w[i + 1] - w[i];
+      t.theta_rad = d.norm() > 0.0 ? std::atan2(d.y(), d.x()) : 0.0;
+      // The camera as carried while driving: level, facing the way the base drives.
+      t.T_world_camera = geometry::CameraPoseFromYawPitch(Eigen::Vector3d(w[i].x(), w[i].y(), camera_z_m), t.theta_rad, 0.0);
+      t.view = false;
+      t.step = step_index;
+      record.trajectory.push_back(t);
+    }
+  }
+
   // Moves the robot so its camera takes T (already checked reachable when `plan` is given).
   bool MoveCamera(const geometry::Pose3& T_world_camera, StepRecord* step) {
     const double before_m = robot.travel().distance_m;
     const double before_s = robot.travel().time_s;
     sim::ReachPlan plan = robot.PlanTo(T_world_camera, navigator);
     if (!plan.ok()) return false;
+    const geometry::Pose3 T_before = robot.CameraPose();
     robot.Execute(plan);
     for (const auto& w : plan.path.waypoints) visited.push_back(w);
     visited.push_back(robot.base().xy_m);
+    AddPathSamples(plan.path, T_before.translation().z(), before_s, robot.travel().time_s, step->index);
     step->travel_m += robot.travel().distance_m - before_m;
     step->timing_ms["navigate_sim"] += 1e3 * (robot.travel().time_s - before_s);
     TakeView(plan.T_world_camera, step);
