@@ -318,28 +318,6 @@ std::vector<ChildOutcome> RunChildProcesses(const std::vector<ChildCommand>& com
   return outcomes;
 }
 
-recognition::DatabaseBuildOptions BuildOptionsOf(const recognition::ModelDatabase& database) {
-  recognition::DatabaseBuildOptions options;
-  options.keypoints = database.settings().keypoints;
-  options.keypoint_seed = database.settings().keypoint_seed;
-  options.descriptor = database.settings().descriptor;
-  options.bow = database.settings().bow;
-  return options;
-}
-
-std::vector<recognition::ModelSource> ModelSourcesOf(const recognition::ModelDatabase& database) {
-  std::vector<recognition::ModelSource> sources;
-  for (const auto& model : database.models()) {
-    recognition::ModelSource s;
-    s.category = model.category;
-    s.name = model.name;
-    s.source = model.source;
-    s.load_mesh = [model] { return recognition::LoadModelSourceMesh(model); };
-    sources.push_back(std::move(s));
-  }
-  return sources;
-}
-
 recognition::ModelDatabase DatabaseWithoutParts(const recognition::ModelDatabase& database) {
   recognition::ModelDatabase out;
   out.mutable_settings() = database.settings();

@@ -125,14 +125,9 @@ std::vector<ChildOutcome> RunChildProcesses(const std::vector<ChildCommand>& com
                                             const ChildStartedFn& on_started = nullptr,
                                             const ChildFinishedFn& on_finished = nullptr);
 
-// Databases. The build options a database was built with, as far as the file records them (entry
-// description settings; the rest at their defaults).
-recognition::DatabaseBuildOptions BuildOptionsOf(const recognition::ModelDatabase& database);
-// Model sources that rebuild the models of a database (from their mesh files or procedural recipes).
-std::vector<recognition::ModelSource> ModelSourcesOf(const recognition::ModelDatabase& database);
 // The variant of a database without component and pair entries (paper Fig. 14): the same models and
-// full-model entries, vocabulary and description settings, with every component and pair entry left
-// out (copied, not rebuilt: only the entries differ between the two databases).
+// full-model entries, vocabulary and description settings, with every component and pair entry left out
+// (copied, not rebuilt: only the entries differ between the two databases).
 recognition::ModelDatabase DatabaseWithoutParts(const recognition::ModelDatabase& database);
 
 // Model-disjoint databases from worlds (OASC): the models of every world except `test_index`,

@@ -156,28 +156,26 @@ void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame) {
       const Eigen::Vector3f p = frame.PointWorld(u, v).cast<float>();
       // The voxel of the (noisy) point, or the nearest neighbouring voxel of the same instance.
       const geometry::VoxelKey k = geometry::KeyOf(p, inv);
+      // The voxel holding p has the nearest centre of all: when it is of the instance, it is the one;
+      // otherwise the nearest of its neighbours that is.
       int best = -1;
-      float best_d = 1e9f;
-      // The voxel holding p has the nearest centre of all: when it is of the instance, it is the one.
       auto own = m.voxel_index.find(k);
       if (own != m.voxel_index.end() && voxels[own->second].instance == instance) {
-        if (!seen[own->second]) {
-          seen[own->second] = 1;
-          seen_list.push_back(own->second);
-        }
-        continue;
-      }
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            auto it = m.voxel_index.find(geometry::VoxelKey{k.x + dx, k.y + dy, k.z + dz});
-            if (it == m.voxel_index.end() || voxels[it->second].instance != instance) continue;
-            const float d = (voxels[it->second].center_world.cast<float>() - p).squaredNorm();
-            if (d < best_d) {
-              best_d = d;
-              best = it->second;
+        best = own->second;
+      } else {
+        float best_d = 1e9f;
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              auto it = m.voxel_index.find(geometry::VoxelKey{k.x + dx, k.y + dy, k.z + dz});
+              if (it == m.voxel_index.end() || voxels[it->second].instance != instance) continue;
+              const float d = (voxels[it->second].center_world.cast<float>() - p).squaredNorm();
+              if (d < best_d) {
+                best_d = d;
+                best = it->second;
+              }
             }
-          }
+      }
       if (best >= 0 && !seen[best]) {
         seen[best] = 1;
         seen_list.push_back(best);

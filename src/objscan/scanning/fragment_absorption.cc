@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "objscan/geometry/aabb.h"
+#include "objscan/recognition/kd_tree.h"
 
 namespace objscan::scanning {
 namespace {
@@ -33,8 +34,7 @@ std::vector<int> AbsorbExplainedFragments(const std::vector<FragmentCandidate>& 
     geometry::Aabb3 model_box;
     for (const auto& p : *H.model_points) model_box.Extend(p.cast<double>());
     const geometry::Pose3 T_model_world = H.T_world_model.inverse();
-    recognition::KdTree3 own_tree;
-    const recognition::KdTree3* tree = H.model_tree;
+    recognition::KdTree3 tree;  // over the model's points, built when a fragment first comes near
     for (int f : order) {
       const FragmentCandidate& F = objects[f];
       if (f == h || host[f] != f || !F.may_be_absorbed || F.points_world.empty()) continue;
@@ -47,12 +47,9 @@ std::vector<int> AbsorbExplainedFragments(const std::vector<FragmentCandidate>& 
         const Eigen::Vector3d p = T_model_world * p_world.cast<double>();
         bool on_surface = false;
         if (model_box.Contains(p, options.distance_m)) {
-          if (tree == nullptr) {
-            own_tree.Build(*H.model_points);
-            tree = &own_tree;
-          }
+          if (tree.empty()) tree.Build(*H.model_points);
           float d2 = 0.f;
-          tree->Nearest(p.cast<float>(), &d2);
+          tree.Nearest(p.cast<float>(), &d2);
           on_surface = d2 <= max_d2;
         }
         if (on_surface) {

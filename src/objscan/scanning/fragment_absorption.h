@@ -11,7 +11,6 @@
 
 #include "objscan/common/config.h"
 #include "objscan/geometry/pose.h"
-#include "objscan/recognition/kd_tree.h"
 
 namespace objscan::scanning {
 
@@ -44,7 +43,6 @@ struct FragmentCandidate {
   double objectness = 0.0;
   // Its best full model's surface points in the model frame and the model's pose; null = no model.
   const std::vector<Eigen::Vector3f>* model_points = nullptr;
-  const recognition::KdTree3* model_tree = nullptr;  // over *model_points (optional: built when needed)
   geometry::Pose3 T_world_model = geometry::Pose3::Identity();
   bool may_be_absorbed = true;                 // false for objects already replaced by their model
 };

@@ -381,51 +381,11 @@ struct Scanner::State {
     if (analysis_observer) analysis_observer(*owner);
   }
 
-  bool LargeEnough(const segmentation::PostSegmentedObject& r) const {
-    geometry::Aabb3 bounds;
-    double area_m2 = 0.0;
-    std::size_t num_points = 0;
-    ObjectGeometry(r, nullptr, &bounds, &area_m2, &num_points);
-    return static_cast<int>(num_points) >= config.scanner.min_object_elements;
-  }
-
-  // Fragment absorption over the completed objects, then the current objects large enough to be
-  // reported (the order of the final object list): for each, the index of its host (itself if none).
-  std::vector<int> FragmentHosts() {
-    std::vector<FragmentCandidate> candidates;
-    const auto with_model = [this](const segmentation::ModelMatch& m, FragmentCandidate* f) {
-      if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return;
-      f->model_points = &database.entries()[static_cast<std::size_t>(m.entry_id)].points;
-      f->T_world_model = m.T_world_model;
-      if (f->objectness >= config.scanner.fragments.min_host_objectness) {
-        auto it = model_trees.find(m.entry_id);
-        if (it == model_trees.end()) it = model_trees.emplace(m.entry_id, recognition::KdTree3(*f->model_points)).first;
-        f->model_tree = &it->second;
-      }
-    };
-    for (const auto& c : completed) {
-      FragmentCandidate f;
-      for (auto l : c.labels) {
-        if (const segmentation::Component* comp = segmenter_graph().Find(l)) f.num_points += comp->points.size();
-      }
-      f.objectness = c.objectness;
-      f.may_be_absorbed = false;
-      with_model(c.model, &f);
-      candidates.push_back(std::move(f));
-    }
-    for (int k : objects) {
-      const auto& r = post.objects[k];
-      if (!LargeEnough(r)) continue;
-      FragmentCandidate f;
-      geometry::Aabb3 bounds;
-      double area_m2 = 0.0;
-      std::size_t num_points = 0;
-      ObjectGeometry(r, &f.points_world, &bounds, &area_m2, &num_points);
-      f.objectness = r.objectness;
-      if (const auto* best = r.best_model()) with_model(*best, &f);
-      candidates.push_back(std::move(f));
-    }
-    return AbsorbExplainedFragments(candidates, config.scanner.fragments);
+  // Fragment absorption's view of an object with a best model: the model's points and pose.
+  void SetModel(const segmentation::ModelMatch& m, FragmentCandidate* f) const {
+    if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return;
+    f->model_points = &database.entries()[static_cast<std::size_t>(m.entry_id)].points;
+    f->T_world_model = m.T_world_model;
   }
 
   void UpdateStructure() {
@@ -698,7 +658,6 @@ struct Scanner::State {
   RunRecord record;
 
   const segmentation::ComponentGraph* graph_cache = nullptr;
-  std::map<int, recognition::KdTree3> model_trees;  // database entry -> kd-tree over its points
   segmentation::PostSegmentation post;
   std::vector<int> objects;  // partial objects of `post` (indices)
   std::vector<CompletedObject> completed;
@@ -830,6 +789,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   s.Analyze(&final_step);
   RunRecord& rec = s.record;
   rec.objects.clear();
+  // Fragment absorption candidates, parallel to rec.objects.
+  std::vector<FragmentCandidate> candidates;
   for (const auto& c : s.completed) {
     ObjectRecord o;
     o.id = c.id;
@@ -841,12 +802,24 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.T_world_model = c.model.T_world_model;
     o.labels = c.labels;
     rec.objects.push_back(o);
+    FragmentCandidate f;
+    for (auto l : c.labels) {
+      if (const segmentation::Component* comp = s.segmenter_graph().Find(l)) f.num_points += comp->points.size();
+    }
+    f.objectness = c.objectness;
+    f.may_be_absorbed = false;
+    s.SetModel(c.model, &f);
+    candidates.push_back(std::move(f));
   }
-  const std::vector<int> host = s.FragmentHosts();
   for (int k : s.objects) {
     const auto& r = s.post.objects[k];
+    FragmentCandidate f;
+    geometry::Aabb3 bounds;
+    double area_m2 = 0.0;
+    std::size_t num_points = 0;
+    s.ObjectGeometry(r, &f.points_world, &bounds, &area_m2, &num_points);
     // Fragments too small to be scanned as objects are reported as unrecognized surface.
-    if (!s.LargeEnough(r)) continue;
+    if (static_cast<int>(num_points) < s.config.scanner.min_object_elements) continue;
     ObjectRecord o;
     o.id = r.component_ids.front();
     o.category = r.category;
@@ -854,26 +827,28 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       o.model_index = best->model_id;
       if (best->model_id >= 0) o.model = s.database.models()[best->model_id].name;
       o.T_world_model = best->T_world_model;
+      s.SetModel(*best, &f);
     }
     o.objectness = r.objectness;
     o.given_up = s.given_up.count(o.id) > 0;
     o.labels = r.component_ids;
     rec.objects.push_back(o);
+    f.objectness = r.objectness;
+    candidates.push_back(std::move(f));
   }
   // Pieces lying on a recognized neighbour's model join it (their labels, not their category).
-  {
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      if (host[i] == static_cast<int>(i)) continue;
-      auto& into = rec.objects[static_cast<std::size_t>(host[i])].labels;
-      into.insert(into.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
-      std::sort(into.begin(), into.end());
-    }
-    std::vector<ObjectRecord> kept;
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      if (host[i] == static_cast<int>(i)) kept.push_back(std::move(rec.objects[i]));
-    }
-    rec.objects = std::move(kept);
+  const std::vector<int> host = AbsorbExplainedFragments(candidates, s.config.scanner.fragments);
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    if (host[i] == static_cast<int>(i)) continue;
+    auto& into = rec.objects[static_cast<std::size_t>(host[i])].labels;
+    into.insert(into.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
+    std::sort(into.begin(), into.end());
   }
+  std::vector<ObjectRecord> kept;
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    if (host[i] == static_cast<int>(i)) kept.push_back(std::move(rec.objects[i]));
+  }
+  rec.objects = std::move(kept);
   // Points and majority ground-truth instance per object.
   std::map<std::int32_t, int> object_of_label;
   for (std::size_t i = 0; i < rec.objects.size(); ++i) {
