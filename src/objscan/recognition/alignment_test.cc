@@ -20,12 +20,31 @@ std::vector<Eigen::Vector3f> Keypoints(const std::vector<Eigen::Vector3f>& pts, 
   return kp;
 }
 
+// A yaw about z followed by a translation.
+Eigen::Affine3d YawOffset(double yaw_rad, const Eigen::Vector3d& offset_m) {
+  Eigen::Affine3d T = Eigen::Affine3d::Identity();
+  T.rotate(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()));
+  T.translation() = offset_m;
+  return T;
+}
+
+std::vector<Eigen::Vector3f> Moved(const std::vector<Eigen::Vector3f>& points, const Eigen::Affine3d& T) {
+  std::vector<Eigen::Vector3f> out;
+  for (const auto& p : points) out.push_back((T * p.cast<double>()).cast<float>());
+  return out;
+}
+
+// Keypoints of an independent, coarser sampling of the chair's surface than the item's.
+std::vector<Eigen::Vector3f> ResampledChairKeypoints() {
+  std::vector<Eigen::Vector3f> resampled, normals;
+  testing::ChairLike(0.013, &resampled, &normals);
+  return Keypoints(resampled, 3);
+}
+
 // The query is the item moved by T_query_item; alignment must return its inverse.
 void ExpectRecovers(const AlignmentResult& r, double yaw_rad, const Eigen::Vector3d& offset_m) {
   ASSERT_TRUE(r.ok());
-  Eigen::Affine3d T_query_item = Eigen::Affine3d::Identity();
-  T_query_item.rotate(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()));
-  T_query_item.translation() = offset_m;
+  const Eigen::Affine3d T_query_item = YawOffset(yaw_rad, offset_m);
   const Eigen::Affine3d err = r.T_item_query * T_query_item;  // identity when exact
   const double angle_err = Eigen::AngleAxisd(err.linear()).angle();
   EXPECT_LT(geometry::RadToDeg(angle_err), 2.0);
@@ -40,14 +59,8 @@ TEST(AlignmentTest, RecoversKnownYawAndOffsetOfAFullObject) {
   for (double yaw_deg : {37.0, 143.0, -101.0}) {
     const double yaw = geometry::DegToRad(yaw_deg);
     const Eigen::Vector3d offset(1.7, -2.3, 0.05);
-    Eigen::Affine3d T = Eigen::Affine3d::Identity();
-    T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-    T.translation() = offset;
     // Query: an independent, coarser sampling of the same surface, moved.
-    std::vector<Eigen::Vector3f> resampled, n2;
-    testing::ChairLike(0.013, &resampled, &n2);
-    std::vector<Eigen::Vector3f> query;
-    for (const auto& p : Keypoints(resampled, 3)) query.push_back((T * p.cast<double>()).cast<float>());
+    const std::vector<Eigen::Vector3f> query = Moved(ResampledChairKeypoints(), YawOffset(yaw, offset));
     SCOPED_TRACE(yaw_deg);
     ExpectRecovers(AlignToItem(query, target, options), yaw, offset);
   }
@@ -73,13 +86,7 @@ TEST(AlignmentTest, GridScoredInitialHypothesesRecoverKnownYawAndOffset) {
   for (double yaw_deg : {37.0, 143.0, -101.0}) {
     const double yaw = geometry::DegToRad(yaw_deg);
     const Eigen::Vector3d offset(1.7, -2.3, 0.05);
-    Eigen::Affine3d T = Eigen::Affine3d::Identity();
-    T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-    T.translation() = offset;
-    std::vector<Eigen::Vector3f> resampled, n2;
-    testing::ChairLike(0.013, &resampled, &n2);
-    std::vector<Eigen::Vector3f> query;
-    for (const auto& p : Keypoints(resampled, 3)) query.push_back((T * p.cast<double>()).cast<float>());
+    const std::vector<Eigen::Vector3f> query = Moved(ResampledChairKeypoints(), YawOffset(yaw, offset));
     SCOPED_TRACE(yaw_deg);
     ExpectRecovers(AlignToItem(query, target, options), yaw, offset);
   }
@@ -91,9 +98,7 @@ TEST(AlignmentTest, RecoversKnownYawAndOffsetOfAPartialView) {
   const AlignmentTarget target(chair);
   const double yaw = geometry::DegToRad(-58.0);
   const Eigen::Vector3d offset(-0.4, 0.9, 0.0);
-  Eigen::Affine3d T = Eigen::Affine3d::Identity();
-  T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-  T.translation() = offset;
+  const Eigen::Affine3d T = YawOffset(yaw, offset);
   // Only what a camera at +x sees from the front: points with normals facing +x or up, x > -0.1.
   std::vector<Eigen::Vector3f> partial;
   for (std::size_t i = 0; i < chair.size(); ++i) {
@@ -128,11 +133,7 @@ TEST(AlignmentTest, CoarseThenRefineIsAlignToItemAndTruncationKeepsThePose) {
   const AlignmentTarget target(chair);
   const double yaw = geometry::DegToRad(71.0);
   const Eigen::Vector3d offset(0.6, -1.2, 0.0);
-  Eigen::Affine3d T = Eigen::Affine3d::Identity();
-  T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-  T.translation() = offset;
-  std::vector<Eigen::Vector3f> query;
-  for (const auto& p : Keypoints(chair, 4)) query.push_back((T * p.cast<double>()).cast<float>());
+  const std::vector<Eigen::Vector3f> query = Moved(Keypoints(chair, 4), YawOffset(yaw, offset));
   for (double truncation_m : {0.0, 0.15}) {
     AlignmentOptions options;
     options.initial_truncation_m = truncation_m;
@@ -163,16 +164,11 @@ TEST(AlignmentTest, GridCorrespondencesAndEarlyStopKeepThePose) {
   EXPECT_EQ(grid, other_grid);
   EXPECT_FALSE(grid->empty());
   EXPECT_LT(grid->memory_bytes(), 300u * 1024u);
-  std::vector<Eigen::Vector3f> resampled, n2;
-  testing::ChairLike(0.013, &resampled, &n2);
+  const std::vector<Eigen::Vector3f> resampled = ResampledChairKeypoints();
   for (double yaw_deg : {23.0, -131.0}) {
     const double yaw = geometry::DegToRad(yaw_deg);
     const Eigen::Vector3d offset(-0.8, 1.4, 0.02);
-    Eigen::Affine3d T = Eigen::Affine3d::Identity();
-    T.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-    T.translation() = offset;
-    std::vector<Eigen::Vector3f> query;
-    for (const auto& p : Keypoints(resampled, 3)) query.push_back((T * p.cast<double>()).cast<float>());
+    const std::vector<Eigen::Vector3f> query = Moved(resampled, YawOffset(yaw, offset));
     SCOPED_TRACE(yaw_deg);
     AlignmentOptions kd_only;
     kd_only.grid_correspondences = false;

@@ -3,31 +3,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "objscan/recognition/grid_fit.h"
+
 namespace objscan::recognition {
 
 DistanceGrid::DistanceGrid(const std::vector<Eigen::Vector3f>& points, float truncation_m, int max_vertices,
                            float min_spacing_m) {
   if (points.empty() || !(truncation_m > 0.f) || max_vertices < 8) return;
-  Eigen::Vector3f lo = points[0], hi = points[0];
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  lo.array() -= truncation_m;
-  hi.array() += truncation_m;
-  const Eigen::Vector3f extent = hi - lo;
-  float spacing = std::max(min_spacing_m, std::cbrt(extent.prod() / static_cast<float>(max_vertices)));
-  const auto count = [&](float e, float h) { return static_cast<int>(std::floor(e / h)) + 2; };
-  while (static_cast<long>(count(extent.x(), spacing)) * count(extent.y(), spacing) * count(extent.z(), spacing) >
-         max_vertices)
-    spacing *= 1.05f;
-  nx_ = count(extent.x(), spacing);
-  ny_ = count(extent.y(), spacing);
-  nz_ = count(extent.z(), spacing);
+  const GridFit fit = FitGrid(points, truncation_m, max_vertices, min_spacing_m, 2);
+  const float spacing = fit.spacing_m;
+  nx_ = fit.nx;
+  ny_ = fit.ny;
+  nz_ = fit.nz;
   max_cell_x_ = static_cast<float>(nx_ - 1);
   max_cell_y_ = static_cast<float>(ny_ - 1);
   max_cell_z_ = static_cast<float>(nz_ - 1);
-  origin_ = lo;
+  origin_ = fit.origin;
   spacing_m_ = spacing;
   inv_spacing_ = 1.f / spacing;
   truncation_m_ = truncation_m;

@@ -117,6 +117,32 @@ class ShellGrid {
 
 }  // namespace
 
+std::vector<int> FarthestPointOrder(const std::vector<Eigen::Vector3f>& points, int count, int start) {
+  const int n = static_cast<int>(points.size());
+  std::vector<int> order;
+  if (n == 0 || count <= 0) return order;
+  order.reserve(static_cast<std::size_t>(count));
+  // Coordinates as separate arrays so the distance update and the maximum vectorise; the first index
+  // holding the maximum is the one a sequential scan picks.
+  Eigen::ArrayXf xs(n), ys(n), zs(n);
+  for (int i = 0; i < n; ++i) {
+    xs[i] = points[i].x();
+    ys[i] = points[i].y();
+    zs[i] = points[i].z();
+  }
+  Eigen::ArrayXf d2 = Eigen::ArrayXf::Constant(n, std::numeric_limits<float>::infinity());
+  int next = start;
+  for (int k = 0; k < count; ++k) {
+    order.push_back(next);
+    const Eigen::Vector3f& p = points[next];
+    // x^2 + (y^2 + z^2): the association of Vector3f::squaredNorm, so the choices match it bit for bit.
+    d2 = d2.min((xs - p.x()).square() + ((ys - p.y()).square() + (zs - p.z()).square()));
+    const float far_d2 = d2.maxCoeff();
+    next = static_cast<int>(std::find(d2.data(), d2.data() + n, far_d2) - d2.data());
+  }
+  return order;
+}
+
 std::vector<int> SampleKeypointsLloyd(const std::vector<Eigen::Vector3f>& points, const KeypointOptions& options,
                                       Rng* rng) {
   std::vector<int> candidates = VoxelThin(points, options.density_voxel_m);
@@ -137,26 +163,10 @@ std::vector<int> SampleKeypointsLloyd(const std::vector<Eigen::Vector3f>& points
   std::vector<Eigen::Vector3f> pts(n);
   for (int i = 0; i < n; ++i) pts[i] = points[relax[i]];
 
-  // Farthest-point initialisation from a seeded start. Coordinates as separate arrays so the
-  // distance update and the maximum vectorise; the first index holding the maximum is the one a
-  // sequential scan picks.
-  Eigen::ArrayXf xs(n), ys(n), zs(n);
-  for (int i = 0; i < n; ++i) {
-    xs[i] = pts[i].x();
-    ys[i] = pts[i].y();
-    zs[i] = pts[i].z();
-  }
+  // Farthest-point initialisation from a seeded start.
   std::vector<Eigen::Vector3f> centres;
   centres.reserve(n_keypoints);
-  Eigen::ArrayXf d2 = Eigen::ArrayXf::Constant(n, std::numeric_limits<float>::infinity());
-  int next = rng->UniformInt(0, n - 1);
-  for (int k = 0; k < n_keypoints; ++k) {
-    centres.push_back(pts[next]);
-    // x^2 + (y^2 + z^2): the association of Vector3f::squaredNorm, so the choices match it bit for bit.
-    d2 = d2.min((xs - pts[next].x()).square() + ((ys - pts[next].y()).square() + (zs - pts[next].z()).square()));
-    const float far_d2 = d2.maxCoeff();
-    next = static_cast<int>(std::find(d2.data(), d2.data() + n, far_d2) - d2.data());
-  }
+  for (int i : FarthestPointOrder(pts, n_keypoints, rng->UniformInt(0, n - 1))) centres.push_back(pts[i]);
 
   // Lloyd: assign every point to its nearest centre, move each centre to its cell's centroid.
   std::vector<Eigen::Vector3d> sums(n_keypoints);

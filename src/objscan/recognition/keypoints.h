@@ -32,6 +32,11 @@ struct KeypointOptions {
 std::vector<int> SampleKeypointsLloyd(const std::vector<Eigen::Vector3f>& points, const KeypointOptions& options,
                                       Rng* rng);
 
+// `count` indices into `points` in farthest-point order from index `start`: each next one is the
+// point farthest from those already picked (the first such index on ties). Once every point is
+// picked, the rest repeat; empty for no points.
+std::vector<int> FarthestPointOrder(const std::vector<Eigen::Vector3f>& points, int count, int start);
+
 // Thins points to one per voxel (the first in input order); returns the kept indices in input order.
 std::vector<int> VoxelThin(const std::vector<Eigen::Vector3f>& points, double voxel_m);
 

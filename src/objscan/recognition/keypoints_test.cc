@@ -143,6 +143,30 @@ TEST(KeypointsTest, MatchesTheBruteForceReference) {
   EXPECT_EQ(SampleKeypointsLloyd(pts, options, &rng_fast), ReferenceLloyd(pts, options, &rng_reference));
 }
 
+// Farthest-point order against a plain scan: each pick is the first point farthest from those picked.
+TEST(KeypointsTest, FarthestPointOrderMatchesAPlainScan) {
+  Rng rng(3);
+  std::vector<Eigen::Vector3f> pts(400);
+  for (auto& p : pts) p = Eigen::Vector3f(rng.Uniform01(), rng.Uniform01(), 0.3 * rng.Uniform01());
+  const int start = 17, count = 60;
+  std::vector<int> expected{start};
+  std::vector<float> d2(pts.size(), std::numeric_limits<float>::infinity());
+  while (static_cast<int>(expected.size()) < count) {
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      d2[i] = std::min(d2[i], (pts[i] - pts[expected.back()]).squaredNorm());
+      if (d2[i] > d2[far]) far = i;
+    }
+    expected.push_back(static_cast<int>(far));
+  }
+  EXPECT_EQ(FarthestPointOrder(pts, count, start), expected);
+  // Three points, five picks: all three, then the first index (every distance is zero) again.
+  const std::vector<Eigen::Vector3f> three = {{0, 0, 0}, {1, 0, 0}, {0.4f, 0, 0}};
+  EXPECT_EQ(FarthestPointOrder(three, 5, 0), (std::vector<int>{0, 1, 2, 0, 0}));
+  EXPECT_TRUE(FarthestPointOrder({}, 3, 0).empty());
+  EXPECT_TRUE(FarthestPointOrder(three, 0, 0).empty());
+}
+
 TEST(KeypointsTest, FewerPointsThanKeypointsGivesAllPoints) {
   Rng data_rng(1);
   const auto plane = testing::UniformPlane(1.0, 1.0, 120, &data_rng);

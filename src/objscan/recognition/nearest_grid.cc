@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "objscan/recognition/grid_fit.h"
+
 namespace objscan::recognition {
 namespace {
 
@@ -20,23 +22,13 @@ struct AxisRange {
 NearestGrid::NearestGrid(const std::vector<Eigen::Vector3f>& points, float band_m, int max_cells,
                          float min_cell_m) {
   if (points.empty() || points.size() > 65535 || !(band_m > 0.f) || max_cells < 1) return;
-  Eigen::Vector3f lo = points[0], hi = points[0];
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  lo.array() -= band_m;
-  hi.array() += band_m;
-  const Eigen::Vector3f extent = hi - lo;
   // A cell must not be smaller than band / 30 so a point's reach fits AxisRange.
-  float cell = std::max({min_cell_m, band_m / 30.f, std::cbrt(extent.prod() / static_cast<float>(max_cells))});
-  const auto count = [&](float e, float h) { return static_cast<int>(std::floor(e / h)) + 1; };
-  while (static_cast<long>(count(extent.x(), cell)) * count(extent.y(), cell) * count(extent.z(), cell) > max_cells)
-    cell *= 1.05f;
-  nx_ = count(extent.x(), cell);
-  ny_ = count(extent.y(), cell);
-  nz_ = count(extent.z(), cell);
-  origin_ = lo;
+  const GridFit fit = FitGrid(points, band_m, max_cells, std::max(min_cell_m, band_m / 30.f), 1);
+  const float cell = fit.spacing_m;
+  nx_ = fit.nx;
+  ny_ = fit.ny;
+  nz_ = fit.nz;
+  origin_ = fit.origin;
   cell_m_ = cell;
   inv_cell_m_ = 1.f / cell;
   points_ = points;

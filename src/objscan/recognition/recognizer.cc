@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <numeric>
 #include <stdexcept>
 
 #include "objscan/common/rng.h"
@@ -35,6 +35,17 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
   descriptor_ = MakeDescriptorExtractor(database_.settings().descriptor);
 }
 
+namespace {
+
+// Map normals face the sensor: their mean (over `count` keypoints) points back at it for a view from
+// one side; a query seen from all around has a short mean and no single view direction (zero).
+Eigen::Vector3f ViewDirection(const Eigen::Vector3f& normal_sum, std::size_t count, bool sensor_normals) {
+  if (sensor_normals && normal_sum.norm() > 0.3f * count) return normal_sum.normalized();
+  return Eigen::Vector3f::Zero();
+}
+
+}  // namespace
+
 QueryDescription Recognizer::Describe(const geometry::PointCloud& query, const geometry::PointCloud* support) const {
   QueryDescription q;
   if (query.empty()) return q;
@@ -54,10 +65,8 @@ QueryDescription Recognizer::Describe(const geometry::PointCloud& query, const g
     q.keypoint_normals.push_back(cloud->normals[i]);
     normal_sum += cloud->normals[i];
   }
-  // Map normals face the sensor: their mean points back at it for a view from one side; a query
-  // seen from all around has a short mean and no single view direction.
   q.sensor_normals = query.HasNormals();
-  if (q.sensor_normals && normal_sum.norm() > 0.3f * q.keypoints.size()) q.view_direction = normal_sum.normalized();
+  q.view_direction = ViewDirection(normal_sum, q.keypoints.size(), q.sensor_normals);
   for (const auto& p : cloud->points) q.bounds.Extend(p.cast<double>());
   q.diagonal_m = q.bounds.Diagonal();
   q.num_points = cloud->points.size();
@@ -65,41 +74,6 @@ QueryDescription Recognizer::Describe(const geometry::PointCloud& query, const g
   q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, q.descriptors, q.bounds, s.bow);
   return q;
 }
-
-namespace {
-
-// `count` of `points` spread by farthest-point sampling from the first (deterministic), in the
-// order picked; all of them when count >= points.size().
-std::vector<int> FarthestSubset(const std::vector<Eigen::Vector3f>& points, int count) {
-  const int n = static_cast<int>(points.size());
-  std::vector<int> picked;
-  if (count >= n) {
-    picked.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) picked[static_cast<std::size_t>(i)] = i;
-    return picked;
-  }
-  if (count <= 0) return picked;
-  std::vector<float> d2(static_cast<std::size_t>(n), std::numeric_limits<float>::infinity());
-  int next = 0;
-  for (int k = 0; k < count; ++k) {
-    picked.push_back(next);
-    float far_d2 = -1.f;
-    int far = 0;
-    for (int i = 0; i < n; ++i) {
-      const float d = (points[static_cast<std::size_t>(i)] - points[static_cast<std::size_t>(next)]).squaredNorm();
-      float& best = d2[static_cast<std::size_t>(i)];
-      if (d < best) best = d;
-      if (best > far_d2) {
-        far_d2 = best;
-        far = i;
-      }
-    }
-    next = far;
-  }
-  return picked;
-}
-
-}  // namespace
 
 QueryDescription Recognizer::Compose(const std::vector<const QueryDescription*>& parts) const {
   QueryDescription q;
@@ -121,7 +95,10 @@ QueryDescription Recognizer::Compose(const std::vector<const QueryDescription*>&
     const int share = std::max(
         1, static_cast<int>(std::lround(static_cast<double>(n_p) * static_cast<double>(p->num_points) /
                                         static_cast<double>(total_points))));
-    for (int i : FarthestSubset(p->keypoints, share)) {
+    std::vector<int> picked(p->keypoints.size());
+    std::iota(picked.begin(), picked.end(), 0);
+    if (share < static_cast<int>(picked.size())) picked = FarthestPointOrder(p->keypoints, share, 0);
+    for (int i : picked) {
       const auto k = static_cast<std::size_t>(i);
       q.keypoints.push_back(p->keypoints[k]);
       q.keypoint_normals.push_back(p->keypoint_normals[k]);
@@ -133,7 +110,7 @@ QueryDescription Recognizer::Compose(const std::vector<const QueryDescription*>&
     q.num_points += p->num_points;
     q.sensor_normals = q.sensor_normals && p->sensor_normals;
   }
-  if (q.sensor_normals && normal_sum.norm() > 0.3f * q.keypoints.size()) q.view_direction = normal_sum.normalized();
+  q.view_direction = ViewDirection(normal_sum, q.keypoints.size(), q.sensor_normals);
   q.diagonal_m = q.bounds.Diagonal();
   q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, q.descriptors, q.bounds, s.bow);
   return q;
