@@ -1,6 +1,7 @@
 #include "objscan/eval/metrics.h"
 
 #include <algorithm>
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -164,6 +165,20 @@ CoverageResult CoverageAccumulator::Result(const std::vector<int>& detected_inst
     r.quality = quality_sum / r.num_voxels;
   }
   return r;
+}
+
+std::vector<InstanceCoverage> CoverageAccumulator::PerInstance() const {
+  std::map<int, InstanceCoverage> by_instance;
+  for (std::size_t v = 0; v < voxels_.size(); ++v) {
+    InstanceCoverage& c = by_instance[voxels_[v].instance];
+    c.instance = voxels_[v].instance;
+    ++c.num_voxels;
+    if (best_quality_[v] >= 0.0) ++c.num_visible;
+  }
+  std::vector<InstanceCoverage> out;
+  out.reserve(by_instance.size());
+  for (const auto& [id, c] : by_instance) out.push_back(c);
+  return out;
 }
 
 CoverageResult ComputeCoverage(const std::vector<SurfaceVoxel>& voxels,

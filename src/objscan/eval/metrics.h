@@ -119,6 +119,13 @@ struct CoverageResult {
   int num_covered = 0;    // visible and on a detected instance
 };
 
+// Surface voxels of one ground-truth instance, and how many of them were seen within range.
+struct InstanceCoverage {
+  int instance = world::kNoInstance;
+  int num_voxels = 0;
+  int num_visible = 0;
+};
+
 // Accumulates views one at a time, so coverage curves over the number of views (Fig. 11) cost one
 // pass. Each voxel keeps the best q over the cameras that saw it within range.
 class CoverageAccumulator {
@@ -131,6 +138,8 @@ class CoverageAccumulator {
 
   // Coverage with delta_detect(v) = 1 for voxels of the given instances (the matched ones).
   CoverageResult Result(const std::vector<int>& detected_instances) const;
+  // Per instance, ascending by id: its surface voxels and those seen within range.
+  std::vector<InstanceCoverage> PerInstance() const;
 
   const std::vector<SurfaceVoxel>& voxels() const { return voxels_; }
   // Best q per voxel; -1 for voxels not (yet) seen within range.

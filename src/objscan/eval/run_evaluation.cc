@@ -5,6 +5,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "objscan/eval/exposure.h"
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/segmentation_quality.h"
@@ -33,24 +34,14 @@ std::vector<SurfaceVoxel> SurfaceVoxelsOf(const world::Scene& scene, double voxe
       const Eigen::Vector3d n = (b - a).cross(c - a);
       const double area = 0.5 * n.norm();
       if (area <= 0.0) continue;
-      const int nu = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
-      const int nv = std::max(1, static_cast<int>(std::ceil((c - a).norm() / step)));
-      const double w = area / ((nu + 1) * (nv + 1));
-      for (int i = 0; i <= nu; ++i) {
-        for (int j = 0; j <= nv; ++j) {
-          double u = static_cast<double>(i) / nu, v = static_cast<double>(j) / nv;
-          if (u + v > 1.0) {
-            u = 1.0 - u;
-            v = 1.0 - v;
-          }
-          const Eigen::Vector3d p = a + u * (b - a) + v * (c - a);
-          const geometry::VoxelKey k = geometry::KeyOf(p.cast<float>(), inv);
-          auto [it, inserted] = acc.try_emplace(k);
-          if (inserted) order.push_back(k);
-          it->second.normal += w * n.normalized();
-          it->second.area[o.instance_id] += w;
-        }
-      }
+      const double w = area / ((SampleCount(a, b, step) + 1) * (SampleCount(a, c, step) + 1));
+      SampleTriangle(a, b, c, step, [&](const Eigen::Vector3d& p) {
+        const geometry::VoxelKey k = geometry::KeyOf(p.cast<float>(), inv);
+        auto [it, inserted] = acc.try_emplace(k);
+        if (inserted) order.push_back(k);
+        it->second.normal += w * n.normalized();
+        it->second.area[o.instance_id] += w;
+      });
     }
   }
   std::sort(order.begin(), order.end());
@@ -105,19 +96,46 @@ struct RunEvaluator::Impl {
     return NonStructuralRandIndex(segment, instance, truth);
   }
 
-  Impl(const world::Scene& s, const scanning::SystemConfig& c, std::vector<world::Category> cats)
-      : scene(s), config(c), database_categories(std::move(cats)), voxel_m(c.eval.coverage_voxel_size_m) {
-    std::vector<SurfaceVoxel> voxels = SurfaceVoxelsOf(scene, voxel_m);
+  // V_S is fixed when the first camera position is known (the exposed voxels are those joined to it
+  // through empty space); until then the voxels wait here.
+  std::vector<SurfaceVoxel> surface_voxels;
+
+  CoverageOptions Options() const {
+    CoverageOptions options;
+    options.sigma = config.eval.coverage_sigma;
+    options.theta_t_rad = config.eval.coverage_theta_t_rad;
+    options.min_range_m = config.sensor.min_range_m;
+    options.max_range_m = config.sensor.max_range_m;
+    return options;
+  }
+
+  void BuildCoverage(std::vector<SurfaceVoxel> voxels) {
     const float inv = static_cast<float>(1.0 / voxel_m);
     for (std::size_t i = 0; i < voxels.size(); ++i) {
       voxel_index[geometry::KeyOf(voxels[i].center_world.cast<float>(), inv)] = static_cast<int>(i);
     }
-    CoverageOptions options;
-    options.sigma = c.eval.coverage_sigma;
-    options.theta_t_rad = c.eval.coverage_theta_t_rad;
-    options.min_range_m = c.sensor.min_range_m;
-    options.max_range_m = c.sensor.max_range_m;
-    coverage = std::make_unique<CoverageAccumulator>(std::move(voxels), options);
+    coverage = std::make_unique<CoverageAccumulator>(std::move(voxels), Options());
+  }
+
+  // Keeps the surface voxels a camera at `seed_world`'s side of the scene could ever see.
+  void BuildExposedCoverage(const Eigen::Vector3d& seed_world) {
+    std::vector<Eigen::Vector3d> centers;
+    centers.reserve(surface_voxels.size());
+    for (const auto& v : surface_voxels) centers.push_back(v.center_world);
+    const std::vector<char> exposed = ExposedVoxels(scene, centers, voxel_m, seed_world);
+    std::vector<SurfaceVoxel> kept;
+    for (std::size_t i = 0; i < surface_voxels.size(); ++i) {
+      if (exposed[i]) kept.push_back(surface_voxels[i]);
+    }
+    surface_voxels.clear();
+    surface_voxels.shrink_to_fit();
+    BuildCoverage(std::move(kept));
+  }
+
+  Impl(const world::Scene& s, const scanning::SystemConfig& c, std::vector<world::Category> cats)
+      : scene(s), config(c), database_categories(std::move(cats)), voxel_m(c.eval.coverage_voxel_size_m) {
+    surface_voxels = SurfaceVoxelsOf(scene, voxel_m);
+    if (!c.eval.coverage_exposed_only) BuildCoverage(std::move(surface_voxels));
     for (const auto& o : scene.objects()) {
       if (o.IsStructural()) {
         structural.push_back(o.instance_id);
@@ -138,10 +156,13 @@ RunEvaluator::RunEvaluator(const world::Scene& scene, const scanning::SystemConf
 
 RunEvaluator::~RunEvaluator() = default;
 
-int RunEvaluator::num_surface_voxels() const { return static_cast<int>(impl_->coverage->voxels().size()); }
+int RunEvaluator::num_surface_voxels() const {
+  return static_cast<int>(impl_->coverage ? impl_->coverage->voxels().size() : impl_->surface_voxels.size());
+}
 
 void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame) {
   Impl& m = *impl_;
+  if (!m.coverage) m.BuildExposedCoverage(frame.T_world_camera.translation());
   const float inv = static_cast<float>(1.0 / m.voxel_m);
   const auto& voxels = m.coverage->voxels();
   std::vector<char> seen(voxels.size(), 0);
@@ -198,6 +219,9 @@ void RunEvaluator::ObserveAnalysis(const scanning::Scanner& scanner) {
 
 RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const {
   const Impl& m = *impl_;
+  // With no frame seen, V_S was never narrowed to the exposed voxels, and none is visible.
+  const CoverageAccumulator unseen(m.coverage ? std::vector<SurfaceVoxel>{} : m.surface_voxels, m.Options());
+  const CoverageAccumulator& coverage = m.coverage ? *m.coverage : unseen;
   RunMetrics out;
   const std::vector<GroundTruthInstance>& truth = m.truth;
   const std::vector<std::int32_t>& structural = m.structural;
@@ -230,13 +254,30 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
 
   // Coverage with δ_detect on matched instances, and after each view.
   const std::vector<int>& detected = rec.matched_instances;
-  const CoverageResult cov = m.coverage->Result(detected);
+  const CoverageResult cov = coverage.Result(detected);
   out.coverage_rate = cov.rate;
   out.coverage_quality = cov.quality;
-  CoverageAccumulator curve(m.coverage->voxels(), CoverageOptions{m.config.eval.coverage_sigma,
-                                                                   m.config.eval.coverage_theta_t_rad,
-                                                                   m.config.sensor.min_range_m,
-                                                                   m.config.sensor.max_range_m});
+  out.coverage_visible_rate = cov.num_voxels > 0 ? static_cast<double>(cov.num_visible) / cov.num_voxels : 0.0;
+  {
+    std::unordered_map<int, InstanceCoverage> seen_of;
+    for (const auto& c : coverage.PerInstance()) seen_of[c.instance] = c;
+    const std::set<int> matched(detected.begin(), detected.end());
+    for (const auto& g : truth) {
+      InstanceOutcome o;
+      o.instance = g.instance_id;
+      o.category = g.category;
+      o.in_database = std::find(m.database_categories.begin(), m.database_categories.end(), g.category) !=
+                      m.database_categories.end();
+      auto it = seen_of.find(g.instance_id);
+      if (it != seen_of.end()) {
+        o.surface_voxels = it->second.num_voxels;
+        o.visible_voxels = it->second.num_visible;
+      }
+      o.matched = matched.count(g.instance_id) > 0;
+      out.instances.push_back(o);
+    }
+  }
+  CoverageAccumulator curve(coverage.voxels(), m.Options());
   for (std::size_t i = 0; i < m.seen_per_view.size(); ++i) {
     curve.AddView(m.camera_per_view[i], m.seen_per_view[i]);
     const CoverageResult c = curve.Result(detected);

@@ -18,12 +18,26 @@
 
 namespace objscan::eval {
 
+// One ground-truth object of the scene after a run: what the scanner saw of it and whether it was
+// recognised (the per-object breakdown of recall and coverage).
+struct InstanceOutcome {
+  int instance = world::kNoInstance;
+  world::Category category = world::Category::kOther;
+  bool in_database = false;  // its category is one the database knows (it counts for recall)
+  int surface_voxels = 0;    // its voxels in V_S
+  int visible_voxels = 0;    // of those, seen within the valid range
+  bool matched = false;      // a true positive matched it
+};
+
 struct RunMetrics {
   double recall = 0.0, precision = 0.0;
   double recall_floor = 0.0, precision_floor = 0.0;
   int ground_truth_objects = 0, ground_truth_floor_objects = 0, output_objects = 0, true_positives = 0;
   double rand_index = 0.0, rand_index_preseg = 0.0, preseg_purity = 0.0;
   double coverage_rate = 0.0, coverage_quality = 0.0;
+  // delta_vis alone: the share of V_S seen within range, whether or not its object was recognised.
+  double coverage_visible_rate = 0.0;
+  std::vector<InstanceOutcome> instances;
   double travel_m = 0.0;
   int views = 0, nbo_count = 0;
   double nbv_per_object = 0.0;

@@ -103,6 +103,7 @@ std::string RunJson(const RunOutputInputs& in) {
                  {"preseg_purity", m.preseg_purity},
                  {"coverage_rate", m.coverage_rate},
                  {"coverage_quality", m.coverage_quality},
+                 {"coverage_visible_rate", m.coverage_visible_rate},
                  {"travel_m", m.travel_m},
                  {"views", m.views},
                  {"nbo_count", m.nbo_count},
@@ -115,6 +116,16 @@ std::string RunJson(const RunOutputInputs& in) {
           Json{{"ground_truth", k.ground_truth}, {"outputs", k.outputs}, {"true_positives", k.true_positives}};
     }
     metrics["per_category"] = per_category;
+    Json instances = Json::array();
+    for (const auto& o : m.instances) {
+      instances.push_back(Json{{"instance", o.instance},
+                               {"category", world::CategoryName(o.category)},
+                               {"in_database", o.in_database},
+                               {"surface_voxels", o.surface_voxels},
+                               {"visible_voxels", o.visible_voxels},
+                               {"matched", o.matched}});
+    }
+    metrics["instances"] = instances;
     Json curve = Json::array();
     for (const auto& [rate, quality] : m.coverage_per_view) curve.push_back({rate, quality});
     metrics["coverage_per_view"] = curve;

@@ -29,6 +29,9 @@ struct EvaluationOptions {
   double coverage_sigma = 0.6;              // sigma of q(v)
   double coverage_theta_t_rad = M_PI / 2;   // theta_t of q(v); d_t = sensor.max_range_m
   double coverage_voxel_size_m = 0.05;      // surface voxels of the ground-truth objects (OctoMap's 5 cm)
+  // V_S holds only the surface voxels next to empty space joined to the robot's start (false: every
+  // voxel a triangle touches, also under objects, against walls and inside closed furniture).
+  bool coverage_exposed_only = true;
   // An incomplete object counts as a recognition at termination when its objectness reaches this
   // (complete objects always count).
   double recognized_min_objectness = 0.5;
@@ -38,6 +41,7 @@ struct EvaluationOptions {
     v("coverage_sigma", coverage_sigma);
     v("coverage_theta_t_rad", coverage_theta_t_rad);
     v("coverage_voxel_size_m", coverage_voxel_size_m);
+    v("coverage_exposed_only", coverage_exposed_only);
     v("recognized_min_objectness", recognized_min_objectness);
   }
   void Validate() const {

@@ -1,0 +1,49 @@
+#pragma once
+// Which ground-truth surface voxels a camera in the room could ever see. The surface of a mesh
+// includes faces no camera reaches: the underside of a bed resting on the floor, the back of a
+// cabinet flush against a wall, the inside of a closed box. Counting them in V_S caps the coverage
+// rate well below 1 whatever the robot does.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "objscan/world/scene.h"
+
+namespace objscan::eval {
+
+// Steps of at most `step_m` along the edge from a to b (at least 1).
+inline int SampleCount(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double step_m) {
+  return std::max(1, static_cast<int>(std::ceil((b - a).norm() / step_m)));
+}
+
+// Calls fn(p) for (SampleCount(a, b) + 1) * (SampleCount(a, c) + 1) points spread over triangle
+// (a, b, c), at most `step_m` apart along its edges (points beyond the b-c edge are folded back).
+template <class Fn>
+void SampleTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double step_m,
+                    Fn&& fn) {
+  const int nu = SampleCount(a, b, step_m);
+  const int nv = SampleCount(a, c, step_m);
+  for (int i = 0; i <= nu; ++i) {
+    for (int j = 0; j <= nv; ++j) {
+      double u = static_cast<double>(i) / nu, v = static_cast<double>(j) / nv;
+      if (u + v > 1.0) {
+        u = 1.0 - u;
+        v = 1.0 - v;
+      }
+      fn(a + u * (b - a) + v * (c - a));
+    }
+  }
+}
+
+// For each of `voxel_centers_world` (voxels of side `voxel_m`): 1 when one of its six face
+// neighbours is empty (touched by no triangle of the scene, walls and floor included) and joined to
+// the voxel holding `seed_world` through empty voxels between the floor's top and the layer below
+// the walls' top (when the scene has floors and walls); 0 otherwise. `seed_world` is a point of the
+// room's free space (e.g. the robot's first camera position); when its voxel is not empty, the
+// nearest empty voxel within two voxels is used. All 0 when there is none.
+std::vector<char> ExposedVoxels(const world::Scene& scene, const std::vector<Eigen::Vector3d>& voxel_centers_world,
+                                double voxel_m, const Eigen::Vector3d& seed_world);
+
+}  // namespace objscan::eval

@@ -1,0 +1,100 @@
+#include "objscan/eval/exposure.h"
+
+#include <gtest/gtest.h>
+
+#include "objscan/common/error.h"
+#include "objscan/geometry/mesh.h"
+#include "objscan/sim/test_scenes.h"
+
+namespace objscan::eval {
+namespace {
+
+using sim::testing::BoxObject;
+using sim::testing::Room;
+
+constexpr double kVoxel_m = 0.1;
+
+Eigen::Vector3d Center(int x, int y, int z) { return (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5)) * kVoxel_m; }
+
+// A closed 0.6 m box on the floor of a 3 x 3 m room, faces mid-voxel (x, y in [1.05, 1.65],
+// z in [0.05, 0.65]; the floor's layer is z in [0, 0.1]).
+world::Scene RoomWithBox() {
+  world::Scene scene = Room(3.0, 3.0);
+  scene.Add(BoxObject({1.05, 1.05, 0.05}, {1.65, 1.65, 0.65}));
+  return scene;
+}
+
+TEST(ExposedVoxels, OuterFacesOfABoxOnTheFloorAreExposedItsUndersideAndInsideAreNot) {
+  const world::Scene scene = RoomWithBox();
+  const Eigen::Vector3d seed(0.5, 0.5, 1.2);
+  // Top face (layer 6), a side face (x layer 10, mid height), underside middle (layer 0), an
+  // inside voxel next to no face.
+  const std::vector<Eigen::Vector3d> probes = {Center(13, 13, 6), Center(10, 13, 3), Center(13, 13, 0),
+                                               Center(13, 13, 3)};
+  const std::vector<char> exposed = ExposedVoxels(scene, probes, kVoxel_m, seed);
+  ASSERT_EQ(exposed.size(), probes.size());
+  EXPECT_EQ(exposed[0], 1);
+  EXPECT_EQ(exposed[1], 1);
+  EXPECT_EQ(exposed[2], 0);
+  EXPECT_EQ(exposed[3], 0);
+}
+
+TEST(ExposedVoxels, AnUndersideStaysHiddenWhenAirReachesUnderTheFloorThroughADoorway) {
+  // The room of RoomWithBox without its y = 3 wall but for two stubs: a 1 m doorway joins the room's
+  // air to the outside, which runs under the floor.
+  world::Scene scene("open room");
+  world::SceneObject floor;
+  floor.category = world::Category::kFloor;
+  floor.mesh = geometry::MakeQuadXY(-0.1, -0.1, 3.1, 3.1);
+  scene.Add(floor);
+  scene.Add(BoxObject({-0.1, -0.1, 0}, {3.1, 0, 2.5}, world::Category::kWall));
+  scene.Add(BoxObject({-0.1, 0, 0}, {0, 3.0, 2.5}, world::Category::kWall));
+  scene.Add(BoxObject({3.0, 0, 0}, {3.1, 3.0, 2.5}, world::Category::kWall));
+  scene.Add(BoxObject({-0.1, 3.0, 0}, {1.0, 3.1, 2.5}, world::Category::kWall));
+  scene.Add(BoxObject({2.0, 3.0, 0}, {3.1, 3.1, 2.5}, world::Category::kWall));
+  scene.Add(BoxObject({1.05, 1.05, 0.05}, {1.65, 1.65, 0.65}));
+  const std::vector<char> exposed =
+      ExposedVoxels(scene, {Center(13, 13, 0), Center(13, 13, 6)}, kVoxel_m, Eigen::Vector3d(0.5, 0.5, 1.2));
+  EXPECT_EQ(exposed[0], 0);
+  EXPECT_EQ(exposed[1], 1);
+}
+
+TEST(ExposedVoxels, ABackFlushAgainstAWallIsNotExposedAGapWideEnoughIs) {
+  world::Scene scene = Room(3.0, 3.0);
+  // Flush: the back face at x = 0.02, in the wall's voxel layer next to the wall (x in [-0.1, 0]).
+  scene.Add(BoxObject({0.02, 1.05, 0.05}, {0.45, 1.65, 1.05}));
+  // 0.3 m off the opposite wall (x = 3): its back face at x = 2.65 faces a 0.35 m air gap.
+  scene.Add(BoxObject({2.15, 1.05, 0.05}, {2.65, 1.65, 1.05}));
+  const std::vector<Eigen::Vector3d> probes = {Center(0, 13, 5), Center(26, 13, 5)};
+  const std::vector<char> exposed = ExposedVoxels(scene, probes, kVoxel_m, Eigen::Vector3d(1.5, 0.5, 1.2));
+  EXPECT_EQ(exposed[0], 0);
+  EXPECT_EQ(exposed[1], 1);
+}
+
+TEST(ExposedVoxels, ASeedInsideAClosedBoxSeesOnlyItsInside) {
+  const world::Scene scene = RoomWithBox();
+  const std::vector<Eigen::Vector3d> probes = {Center(13, 13, 6), Center(13, 13, 0)};
+  // From inside the box the inner sides of the top and bottom faces are the exposed ones.
+  const std::vector<char> exposed = ExposedVoxels(scene, probes, kVoxel_m, Eigen::Vector3d(1.35, 1.35, 0.35));
+  EXPECT_EQ(exposed[0], 1);
+  EXPECT_EQ(exposed[1], 1);
+}
+
+TEST(ExposedVoxels, NoVoxelIsExposedFromASeedBuriedInGeometry) {
+  world::Scene scene("solid");
+  // A solid block of nested shells, every voxel within two of the seed touched by a triangle.
+  for (int i = 0; i < 8; ++i) {
+    const double r = 0.05 + 0.05 * i;
+    scene.Add(BoxObject(Eigen::Vector3d::Constant(1.0 - r), Eigen::Vector3d::Constant(1.0 + r)));
+  }
+  const std::vector<char> exposed =
+      ExposedVoxels(scene, {Center(14, 10, 10)}, kVoxel_m, Eigen::Vector3d::Constant(1.0));
+  EXPECT_EQ(exposed[0], 0);
+}
+
+TEST(ExposedVoxels, RejectsANonPositiveVoxelSize) {
+  EXPECT_THROW(ExposedVoxels(RoomWithBox(), {}, 0.0, Eigen::Vector3d::Zero()), InputError);
+}
+
+}  // namespace
+}  // namespace objscan::eval
