@@ -197,4 +197,41 @@ sim::OccupancyGrid2D OccupancyMap::GridOver(const geometry::Aabb3& box, double m
   return grid;
 }
 
+OccupancySnapshot OccupancyMap::Snapshot(const geometry::Aabb3& box) const {
+  OccupancySnapshot snap;
+  const double res = options_.resolution_m;
+  snap.voxel_size_m = res;
+  if (box.Empty()) return snap;
+  // Voxels aligned to multiples of the resolution, as OctoMap's.
+  const Eigen::Vector3d lo = (box.min_m / res).array().floor() * res;
+  const Eigen::Vector3i n = ((box.max_m - lo) / res).array().ceil().cast<int>().max(1);
+  constexpr std::size_t kMaxCells = std::size_t{1} << 28;
+  if (static_cast<std::size_t>(n.x()) * n.y() * n.z() > kMaxCells) {
+    throw InputError("OccupancyMap::Snapshot: box too large for a dense grid");
+  }
+  snap.origin_world = lo;
+  snap.nx = n.x();
+  snap.ny = n.y();
+  snap.nz = n.z();
+  snap.cells.assign(static_cast<std::size_t>(n.x()) * n.y() * n.z(), Occupancy::kUnknown);
+  const octomap::OcTree& tree = impl_->tree;
+  const octomap::point3d bbx_min(lo.x(), lo.y(), lo.z());
+  const octomap::point3d bbx_max(lo.x() + n.x() * res, lo.y() + n.y() * res, lo.z() + n.z() * res);
+  for (auto it = tree.begin_leafs_bbx(bbx_min, bbx_max), end = tree.end_leafs_bbx(); it != end; ++it) {
+    const octomap::point3d c = it.getCoordinate();
+    const double half = 0.5 * it.getSize();
+    const Occupancy state = tree.isNodeOccupied(*it) ? Occupancy::kOccupied : Occupancy::kFree;
+    int i0[3], i1[3];
+    const int dims[3] = {n.x(), n.y(), n.z()};
+    for (int a = 0; a < 3; ++a) {
+      i0[a] = std::max(0, static_cast<int>(std::floor((c(a) - half - lo(a)) / res + 1e-6)));
+      i1[a] = std::min(dims[a] - 1, static_cast<int>(std::ceil((c(a) + half - lo(a)) / res - 1e-6)) - 1);
+    }
+    for (int z = i0[2]; z <= i1[2]; ++z)
+      for (int y = i0[1]; y <= i1[1]; ++y)
+        for (int x = i0[0]; x <= i1[0]; ++x) snap.cells[snap.Index(x, y, z)] = state;
+  }
+  return snap;
+}
+
 }  // namespace objscan::mapping

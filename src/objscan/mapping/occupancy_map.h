@@ -49,6 +49,27 @@ struct OccupancyMapOptions {
 
 enum class Occupancy : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
 
+// The map's state over a box as a flat voxel array (x fastest) at the map's resolution, for lookups
+// in hot loops (an octree descent per lookup costs ~50x more).
+struct OccupancySnapshot {
+  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();  // min corner of voxel (0, 0, 0)
+  double voxel_size_m = 0.05;
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<Occupancy> cells;
+
+  // kUnknown outside the box.
+  Occupancy At(const Eigen::Vector3f& p_world) const {
+    const double inv = 1.0 / voxel_size_m;
+    const double gx = (p_world.x() - origin_world.x()) * inv, gy = (p_world.y() - origin_world.y()) * inv,
+                 gz = (p_world.z() - origin_world.z()) * inv;
+    if (!(gx >= 0 && gy >= 0 && gz >= 0 && gx < nx && gy < ny && gz < nz)) return Occupancy::kUnknown;
+    return cells[Index(static_cast<int>(gx), static_cast<int>(gy), static_cast<int>(gz))];
+  }
+  std::size_t Index(int x, int y, int z) const {
+    return static_cast<std::size_t>(x) + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(y) + static_cast<std::size_t>(ny) * z);
+  }
+};
+
 class OccupancyMap : public sim::OccupancySource {
  public:
   explicit OccupancyMap(const OccupancyMapOptions& options = OccupancyMapOptions());
@@ -80,6 +101,8 @@ class OccupancyMap : public sim::OccupancySource {
   sim::OccupancyGrid2D GridOver(const geometry::Aabb3& bounds, double min_z_m, double max_z_m,
                                 double cell_size_m) const;
 
+  // The voxels over `box` (grown to whole voxels); empty when the box is.
+  OccupancySnapshot Snapshot(const geometry::Aabb3& box) const;
   const OccupancyMapOptions& options() const { return options_; }
 
  private:

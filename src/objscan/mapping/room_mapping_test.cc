@@ -105,6 +105,32 @@ TEST(OccupancyMapTest, KnownBoundsHoldTheKnownVoxelsTightly) {
   }
 }
 
+// The snapshot agrees with Query at every voxel centre of the known bounds (pruned leaves larger than
+// a voxel included), and is unknown outside its box.
+TEST(OccupancyMapTest, SnapshotAgreesWithQueryEverywhere) {
+  const AnalyticWorld room = Room();
+  OccupancyMap occupancy;
+  occupancy.Integrate(room.Render(View(Eigen::Vector3d(0, -0.5, 1.2), 90, -25), nullptr));
+  occupancy.Integrate(room.Render(View(Eigen::Vector3d(-1.0, 0.0, 1.0), 200, -40), nullptr));
+  const OccupancySnapshot snap = occupancy.Snapshot(occupancy.KnownBounds());
+  ASSERT_GT(snap.cells.size(), 0u);
+  std::size_t counts[3] = {0, 0, 0};
+  for (int z = 0; z < snap.nz; ++z) {
+    for (int y = 0; y < snap.ny; ++y) {
+      for (int x = 0; x < snap.nx; ++x) {
+        const Eigen::Vector3d c = snap.origin_world + snap.voxel_size_m * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
+        const Occupancy expected = occupancy.Query(c);
+        ASSERT_EQ(snap.cells[snap.Index(x, y, z)], expected) << c.transpose();
+        ASSERT_EQ(snap.At(c.cast<float>()), expected) << c.transpose();
+        ++counts[static_cast<int>(expected)];
+      }
+    }
+  }
+  EXPECT_GT(counts[static_cast<int>(Occupancy::kFree)], 1000u);
+  EXPECT_GT(counts[static_cast<int>(Occupancy::kOccupied)], 100u);
+  EXPECT_EQ(snap.At(Eigen::Vector3f(0, 0, 50)), Occupancy::kUnknown);
+}
+
 // The navigator takes the band from 2 cm up: floor hits (z ~ 0 with noise) fall in the voxel layer
 // [0, 5 cm] and would block the whole floor unless floor end points only clear space.
 TEST(OccupancyMapTest, FloorEndPointsClearSpaceButNeverBlock) {

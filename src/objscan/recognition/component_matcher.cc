@@ -87,7 +87,7 @@ segmentation::MatchResult RecognizerComponentMatcher::MatchDescribed(const std::
   const RetrievalScope s =
       scope == segmentation::MatchScope::kFullModels ? RetrievalScope::kFullModels : RetrievalScope::kAllEntries;
   const ModelDatabase& db = recognizer_.database();
-  for (const SimilarModel& m : recognizer_.Retrieve(*query, s)) {
+  for (const SimilarModel& m : recognizer_.Retrieve(*query, s, space_)) {
     const DatabaseEntry& e = db.entries()[m.entry];
     segmentation::ModelMatch match;
     match.entry_id = m.entry;

@@ -21,6 +21,8 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
   // The graph whose components the ids refer to; must stay valid while matching (set every step).
   // Cached descriptions of components that are gone or changed since are dropped.
   void SetComponents(const segmentation::ComponentGraph* graph);
+  // What the map says about space (null = nothing); must stay valid while matching (set every step).
+  void SetSpaceEvidence(const SpaceEvidence* space) { space_ = space; }
 
   segmentation::MatchResult Match(const std::vector<std::int32_t>& component_ids,
                                   segmentation::MatchScope scope) override;
@@ -43,6 +45,7 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
   std::unordered_map<std::int32_t, CachedDescription> descriptions_;  // by component id
   int threads_ = 0;
   const segmentation::ComponentGraph* graph_ = nullptr;
+  const SpaceEvidence* space_ = nullptr;
 };
 
 }  // namespace objscan::recognition

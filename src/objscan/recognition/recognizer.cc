@@ -25,6 +25,8 @@ void RecognitionOptions::Validate() const {
   config::Require(estimate_points >= 3, "recognition.estimate_points", "must be at least 3");
   config::Require(estimate_model_points == 0 || estimate_model_points >= 3, "recognition.estimate_model_points",
                   "must be 0 (all) or at least 3");
+  config::RequireNonNegative("recognition.space_weight", space_weight);
+  config::Require(space_tolerance >= 0.0 && space_tolerance < 1.0, "recognition.space_tolerance", "must be in [0, 1)");
   alignment.Validate();
 }
 
@@ -124,12 +126,13 @@ SimilarModel Recognizer::Match(const QueryDescription& query, int entry) const {
   SimilarModel m;
   m.entry = entry;
   m.alignment = AlignToItem(query.keypoints, database_.keypoint_target(entry), options_.alignment);
-  if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), true, 0, &m);
+  if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), true, 0, nullptr, &m);
   return m;
 }
 
 void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points,
-                         const KdTree3& points_tree, bool refined, int model_points, SimilarModel* m) const {
+                         const KdTree3& points_tree, bool refined, int model_points, const SpaceEvidence* space,
+                         SimilarModel* m) const {
   const AlignmentTarget& target = database_.keypoint_target(m->entry);
   const DatabaseEntry& e = database_.entries()[m->entry];
   const double scale = m->alignment.scale;
@@ -139,6 +142,7 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   o.diagonal_m = diag;
   m->fit = 0.0;
   m->visible_objectness = 0.0;
+  m->impossible_fraction = 0.0;
   if (points.empty() || target.empty() || !(diag > 0.0)) {
     m->rank_score = 0.0;
     return;
@@ -163,10 +167,15 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   const std::vector<Eigen::Vector3f>& model = target.tree().points();
   const std::size_t n_model = model_points > 0 ? std::min<std::size_t>(model_points, model.size()) : model.size();
   std::vector<float> model_d2(n_model);
+  const bool check_space = space != nullptr && options_.space_weight > 0.0;
+  std::vector<Eigen::Vector3f> placed;
+  if (check_space) placed.resize(n_model);
   sum = 0.0;
   for (std::size_t k = 0; k < n_model; ++k) {
     float d2 = 0.f;
-    points_tree.Nearest(T_query_item * model[k], &d2);
+    const Eigen::Vector3f p = T_query_item * model[k];
+    if (check_space) placed[k] = p;
+    points_tree.Nearest(p, &d2);
     model_d2[k] = scale2 * d2;
     sum += model_d2[k];
   }
@@ -185,6 +194,16 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
     }
     if (n > 0) m->visible_objectness = std::exp(-std::sqrt(o.similarity_m2 + visible_sum / n) / diag);
   }
+  if (check_space) {
+    const Eigen::Vector3f center = query.bounds.Center().cast<float>();
+    m->impossible_fraction = space->ImpossibleFraction(placed, center);
+    const double t = options_.space_tolerance;
+    const double excess = std::max(0.0, m->impossible_fraction - t) / (1.0 - t);
+    const double factor = std::pow(std::max(0.0, 1.0 - excess), options_.space_weight);
+    o.objectness *= factor;
+    m->fit *= factor;
+    m->visible_objectness *= factor;
+  }
   m->rank_score = o.objectness;
 }
 
@@ -196,7 +215,8 @@ void Recognizer::ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) c
                   std::pow(m->visible_objectness, options_.visible_rank_weight);
 }
 
-std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, RetrievalScope scope) const {
+std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, RetrievalScope scope,
+                                               const SpaceEvidence* space) const {
   std::vector<SimilarModel> chosen;
   if (query.empty()) return chosen;
   const std::vector<ScoredItem> shortlist = Candidates(query, scope, options_.shortlist_size);
@@ -224,7 +244,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
       m.alignment.status = AlignmentStatus::kOk;
       m.alignment.T_item_query = coarse[i].front().T_item_query();
       m.alignment.scale = coarse[i].front().scale;
-      Measure(query, subset, subset_tree, false, options_.estimate_model_points, &m);
+      Measure(query, subset, subset_tree, false, options_.estimate_model_points, space, &m);
       ScoreForRanking(shortlist[i], &m);
       estimate[i] = m.rank_score;
     }
@@ -244,7 +264,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
     const AlignmentTarget& target = database_.keypoint_target(m.entry);
     m.alignment = two_stage ? RefineAlignment(query.keypoints, target, coarse[i], ao)
                             : AlignToItem(query.keypoints, target, ao);
-    if (m.alignment.ok()) Measure(query, query.keypoints, keypoint_tree, true, 0, &m);
+    if (m.alignment.ok()) Measure(query, query.keypoints, keypoint_tree, true, 0, space, &m);
     ScoreForRanking(shortlist[i], &m);
     refined.push_back(std::move(m));
     if (r + 1 < first_batch) continue;

@@ -13,6 +13,7 @@
 #include "objscan/recognition/descriptor.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/recognition/objectness.h"
+#include "objscan/recognition/space_evidence.h"
 
 namespace objscan::recognition {
 
@@ -47,6 +48,12 @@ struct RecognitionOptions {
   // (false = Describe every union, as the paper). The post-segmenter asks for many unions of the same
   // few components; composing them skips keypoint relaxation and descriptors for all of them.
   bool compose_unions = true;
+  // Space evidence (when Retrieve is given a SpaceEvidence): with v the share of an aligned entry's
+  // keypoints lying where no surface can be, O(c, m) and the rank score are multiplied by
+  // (1 - max(0, v - space_tolerance) / (1 - space_tolerance))^space_weight. 0 = the paper's
+  // objectness, which sees only the query's points.
+  double space_weight = 0.0;
+  double space_tolerance = 0.1;  // v up to this costs nothing: database variants differ in detail
   AlignmentOptions alignment;
 
   template <class V>
@@ -63,6 +70,8 @@ struct RecognitionOptions {
     v("estimate_points", estimate_points);
     v("estimate_model_points", estimate_model_points);
     v("compose_unions", compose_unions);
+    v("space_weight", space_weight);
+    v("space_tolerance", space_tolerance);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -91,6 +100,7 @@ struct SimilarModel {
   ObjectnessTerms objectness; // eq. (1) after alignment
   double fit = 0.0;           // exp(-sqrt(d(c, m)) / Diag(c))
   double visible_objectness = 0.0;  // eq. (1) with completeness over sensor-facing model keypoints
+  double impossible_fraction = 0.0;  // share of the aligned entry's keypoints where no surface can be
   double rank_score = 0.0;
   // The entry's pose in the query's (world) frame: T_world_model = T_item_query^-1.
   Eigen::Affine3d T_world_model() const { return alignment.T_item_query.inverse(); }
@@ -113,7 +123,10 @@ class Recognizer {
   QueryDescription Compose(const std::vector<const QueryDescription*>& parts) const;
 
   // M(c): the n_s most similar entries in `scope`, best first. Empty when nothing shares a word.
-  std::vector<SimilarModel> Retrieve(const QueryDescription& query, RetrievalScope scope) const;
+  // With `space` (and RecognitionOptions::space_weight > 0), hypotheses that put model surface where
+  // none can be lose objectness.
+  std::vector<SimilarModel> Retrieve(const QueryDescription& query, RetrievalScope scope,
+                                     const SpaceEvidence* space = nullptr) const;
 
   // Bag-of-words candidates only (no alignment), best first.
   std::vector<ScoredItem> Candidates(const QueryDescription& query, RetrievalScope scope, int count) const;
@@ -132,8 +145,9 @@ class Recognizer {
   // With `refined`, m->alignment comes from RefineAlignment on query.keypoints == points, whose
   // mean_squared_distance_m2 is then d(c, m) already. The completeness term uses the entry's first
   // model_points keypoints (0 = all).
+  // With `space`, the entry's keypoints (as placed) are checked against it and the objectness scaled.
   void Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points, const KdTree3& points_tree,
-               bool refined, int model_points, SimilarModel* m) const;
+               bool refined, int model_points, const SpaceEvidence* space, SimilarModel* m) const;
   void ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const;
 
   const ModelDatabase& database_;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "objscan/geometry/pose.h"
@@ -77,6 +78,64 @@ TEST_F(RecognizerTest, RetrievesTheRightModelAmongDistractorsAndPlacesIt) {
       }
     }
   }
+}
+
+// Space evidence that calls impossible every point above a height (world z), and counts its calls.
+class CeilingEvidence : public SpaceEvidence {
+ public:
+  explicit CeilingEvidence(float ceiling_z_m) : ceiling_z_m_(ceiling_z_m) {}
+  double ImpossibleFraction(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f&) const override {
+    if (points.empty()) return 0.0;
+    std::size_t n = 0;
+    for (const auto& p : points) n += p.z() > ceiling_z_m_ ? 1 : 0;
+    return static_cast<double>(n) / points.size();
+  }
+
+ private:
+  float ceiling_z_m_;
+};
+
+// With space evidence each hypothesis's objectness is scaled by the penalty of the share v of its
+// placed keypoints the evidence rejects: (1 - max(0, v - t) / (1 - t))^w, recomputed here from the
+// returned pose; weight 0 (the paper) ignores the evidence.
+TEST_F(RecognizerTest, SpaceEvidenceScalesObjectnessByTheImpossibleShare) {
+  RecognitionOptions options;
+  options.refine_entries = 0;  // every shortlist entry refined: the same poses with and without evidence
+  const Eigen::Affine3d T_world_model = Placement(30.0, {1.0, 0.5, 0.0});
+  // A partial chair: its unseen back half could be anywhere above the seat; the evidence forbids
+  // everything higher than 0.5 m.
+  const CeilingEvidence evidence(0.5f);
+  const Recognizer plain(*db_, options);
+  const QueryDescription q = plain.Describe(Query(&testing::ChairLike, T_world_model, true));
+  const auto base = plain.Retrieve(q, RetrievalScope::kAllEntries);
+  const auto ignored = plain.Retrieve(q, RetrievalScope::kAllEntries, &evidence);
+  ASSERT_EQ(base.size(), ignored.size());
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    EXPECT_EQ(base[i].entry, ignored[i].entry);
+    EXPECT_DOUBLE_EQ(base[i].objectness.objectness, ignored[i].objectness.objectness);
+    EXPECT_EQ(ignored[i].impossible_fraction, 0.0);
+  }
+  options.space_weight = 2.0;
+  options.space_tolerance = 0.1;
+  const Recognizer checked(*db_, options);
+  const auto scaled = checked.Retrieve(q, RetrievalScope::kAllEntries, &evidence);
+  ASSERT_FALSE(scaled.empty());
+  int penalised = 0;
+  for (const SimilarModel& m : scaled) {
+    auto it = std::find_if(base.begin(), base.end(), [&](const SimilarModel& b) { return b.entry == m.entry; });
+    const SimilarModel unscaled = it != base.end() ? *it : plain.Match(q, m.entry);
+    ASSERT_EQ(unscaled.entry, m.entry);
+    // v from the pose, as the recognizer places the entry's keypoints.
+    const auto& model = db_->keypoint_target(m.entry).tree().points();
+    std::vector<Eigen::Vector3f> placed;
+    for (const auto& p : model) placed.push_back((m.T_world_model() * p.cast<double>()).cast<float>());
+    const double v = evidence.ImpossibleFraction(placed, Eigen::Vector3f::Zero());
+    EXPECT_NEAR(m.impossible_fraction, v, 1e-12);
+    const double factor = std::pow(1.0 - std::max(0.0, v - 0.1) / 0.9, 2.0);
+    EXPECT_NEAR(m.objectness.objectness, factor * unscaled.objectness.objectness, 1e-9) << "entry " << m.entry;
+    penalised += v > 0.1 ? 1 : 0;
+  }
+  EXPECT_GT(penalised, 0);  // the chair's back rises above 0.5 m
 }
 
 // Refining only the entries ranked best by the coarse stage must choose what refining the whole

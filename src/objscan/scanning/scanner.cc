@@ -267,10 +267,12 @@ struct Scanner::State {
   }
 
   // Moves the robot so its camera takes T (already checked reachable when `plan` is given).
-  bool MoveCamera(const geometry::Pose3& T_world_camera, StepRecord* step) {
+  // `why` (optional) receives the reach status when the move is impossible.
+  bool MoveCamera(const geometry::Pose3& T_world_camera, StepRecord* step, sim::ReachStatus* why = nullptr) {
     const double before_m = robot.travel().distance_m;
     const double before_s = robot.travel().time_s;
     sim::ReachPlan plan = robot.PlanTo(T_world_camera, navigator);
+    if (why) *why = plan.status;
     if (!plan.ok()) return false;
     const geometry::Pose3 T_before = robot.CameraPose();
     robot.Execute(plan);
@@ -325,6 +327,11 @@ struct Scanner::State {
     Charge(step, "segment", w.ElapsedMs());
     w.Restart();
     matcher.SetComponents(&graph);
+    if (config.recognition.space_weight > 0.0) {
+      space_evidence = std::make_unique<MapSpaceEvidence>(occupancy.Snapshot(occupancy.KnownBounds()), structure,
+                                                          config.scanner.space);
+      matcher.SetSpaceEvidence(space_evidence.get());
+    }
     segmentation::PostSegmenterInput input;
     std::set<std::int32_t> included;
     for (const auto& c : graph.components()) {
@@ -611,9 +618,10 @@ struct Scanner::State {
     bool moved = false;
     for (const auto& T : views) {
       if (!moved) {
-        moved = MoveCamera(T, step);
+        sim::ReachStatus why = sim::ReachStatus::kOk;
+        moved = MoveCamera(T, step, &why);
         if (!moved) {
-          step->notes.push_back("frontier view not reachable");
+          step->notes.push_back(std::string("frontier view not reachable (") + sim::ReachStatusName(why) + ")");
           break;
         }
       } else {
@@ -644,6 +652,7 @@ struct Scanner::State {
   double structure_elements = 0;  // map size at the last full floor/wall search
   recognition::Recognizer recognizer;
   recognition::RecognizerComponentMatcher matcher;
+  std::unique_ptr<MapSpaceEvidence> space_evidence;  // rebuilt at every analysis
   segmentation::PostSegmenter post_segmenter;
   planning::NextBestView nbv;
   planning::CameraFrustum frustum;

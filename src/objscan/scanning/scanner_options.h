@@ -4,6 +4,7 @@
 
 #include "objscan/common/config.h"
 #include "objscan/scanning/fragment_absorption.h"
+#include "objscan/scanning/map_space_evidence.h"
 
 namespace objscan::scanning {
 
@@ -49,6 +50,9 @@ struct ScannerOptions {
   double structure_redetect_growth = 0.1;
   // Pieces lying on a recognized neighbour's model are reported as part of it (fragment_absorption.h).
   FragmentAbsorptionOptions fragments;
+  // What counts as impossible space for a recognition hypothesis (used when
+  // recognition.space_weight > 0).
+  MapSpaceEvidenceOptions space;
   int threads = 0;                     // 0 = hardware concurrency; results do not depend on it
 
   template <class V>
@@ -73,6 +77,7 @@ struct ScannerOptions {
     v("structure_reveal_depth_m", structure_reveal_depth_m);
     v("structure_redetect_growth", structure_redetect_growth);
     v("fragments", fragments);
+    v("space", space);
     v("threads", threads);
   }
   void Validate() const {
@@ -95,6 +100,7 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_reveal_depth_m", structure_reveal_depth_m);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
     fragments.Validate();
+    space.Validate();
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }
 };

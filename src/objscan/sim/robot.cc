@@ -119,7 +119,11 @@ ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const Navigator& 
     }
   }
   bool any_free = false;
-  const std::vector<double> path_cost = navigator.PathCosts(base_.xy_m, candidates);
+  // From where the robot can start (its own cell, or the free cell a blocked start backs out to):
+  // searching from a blocked cell reaches nothing.
+  const double escape_m = (start_xy - base_.xy_m).norm();
+  std::vector<double> path_cost = navigator.PathCosts(start_xy, candidates);
+  for (double& c : path_cost) c += escape_m;
   double best_cost = std::numeric_limits<double>::infinity();
   Eigen::Vector2d best_xy = Eigen::Vector2d::Zero();
   for (std::size_t k = 0; k < candidates.size(); ++k) {

@@ -173,5 +173,30 @@ TEST(RobotTest, ReachesViewsInAProceduralBedroom) {
   EXPECT_GE(robot.travel().time_s, robot.travel().distance_m / options.speed_m_per_s);
 }
 
+// A robot whose own cell became blocked (an obstacle seen late, closer than its radius) backs out to
+// the nearest free cell: its path search starts there, not from the blocked cell, which reaches nothing.
+TEST(RobotTest, ABlockedStartWithinTheEscapeRadiusStillReachesFarViews) {
+  world::Scene scene = Room(6, 4);
+  scene.Add(BoxObject({2.0, 2.0, 0}, {2.5, 2.5, 0.8}));
+  const GroundTruthOccupancy source(scene);
+  const RobotOptions options;
+  NavigatorOptions nav_options;
+  const Navigator nav(source, options.base_radius_m, options.height_m, nav_options);
+  BasePose start;
+  start.xy_m = Eigen::Vector2d(1.85, 2.25);  // 0.15 m from the box: inside its inflation
+  ASSERT_FALSE(nav.IsFree(start.xy_m));
+  Robot robot(options, start);
+  const geometry::Pose3 far =
+      geometry::CameraPoseFromYawPitch(Eigen::Vector3d(5.0, 1.0, 1.2), 0.0, geometry::DegToRad(-20));
+  const ReachPlan plan = robot.PlanTo(far, nav);
+  ASSERT_EQ(plan.status, ReachStatus::kOk) << ReachStatusName(plan.status);
+  // The path leaves from the robot's own position.
+  EXPECT_LT((plan.path.waypoints.front() - start.xy_m).norm(), 1e-9);
+  // Without the escape the start stays blocked.
+  nav_options.start_escape_m = 0.0;
+  const Navigator strict(source, options.base_radius_m, options.height_m, nav_options);
+  EXPECT_EQ(robot.PlanTo(far, strict).status, ReachStatus::kStartBlocked);
+}
+
 }  // namespace
 }  // namespace objscan::sim

@@ -1,0 +1,60 @@
+#include "objscan/scanning/map_space_evidence.h"
+
+namespace objscan::scanning {
+
+MapSpaceEvidence::MapSpaceEvidence(const mapping::OccupancySnapshot& snapshot,
+                                   const mapping::StructureResult& structure, const MapSpaceEvidenceOptions& options)
+    : snapshot_(snapshot), structure_(structure), options_(options) {
+  options_.Validate();
+  const auto& s = snapshot_;
+  impossible_.assign(s.cells.size(), 0);
+  auto free_at = [&s](int x, int y, int z) {
+    // Outside the snapshot nothing is known.
+    if (x < 0 || y < 0 || z < 0 || x >= s.nx || y >= s.ny || z >= s.nz) return false;
+    return s.cells[s.Index(x, y, z)] == mapping::Occupancy::kFree;
+  };
+  for (int z = 0; z < s.nz; ++z) {
+    for (int y = 0; y < s.ny; ++y) {
+      for (int x = 0; x < s.nx; ++x) {
+        if (!free_at(x, y, z)) continue;
+        if (options_.erode_free &&
+            !(free_at(x - 1, y, z) && free_at(x + 1, y, z) && free_at(x, y - 1, z) && free_at(x, y + 1, z) &&
+              free_at(x, y, z - 1) && free_at(x, y, z + 1))) {
+          continue;
+        }
+        impossible_[s.Index(x, y, z)] = 1;
+      }
+    }
+  }
+}
+
+bool MapSpaceEvidence::Impossible(const Eigen::Vector3f& p, const Eigen::Vector3f& query_center) const {
+  const auto& s = snapshot_;
+  const double inv = 1.0 / s.voxel_size_m;
+  const double gx = (p.x() - s.origin_world.x()) * inv, gy = (p.y() - s.origin_world.y()) * inv,
+               gz = (p.z() - s.origin_world.z()) * inv;
+  if (gx >= 0 && gy >= 0 && gz >= 0 && gx < s.nx && gy < s.ny && gz < s.nz &&
+      impossible_[s.Index(static_cast<int>(gx), static_cast<int>(gy), static_cast<int>(gz))]) {
+    return true;
+  }
+  if (structure_.has_floor && p.z() < structure_.floor_height_m - options_.below_floor_m) return true;
+  const Eigen::Vector3d pd = p.cast<double>(), cd = query_center.cast<double>();
+  for (const mapping::WallPlane& w : structure_.walls) {
+    if (w.SignedDistance(pd) >= -options_.behind_wall_m) continue;
+    // The query itself beyond this wall (seen through a door): the wall says nothing about it.
+    if (w.SignedDistance(cd) < -options_.behind_wall_m) continue;
+    const double along = w.Along(pd);
+    if (along >= w.span_min_m && along <= w.span_max_m && pd.z() >= w.z_min_m && pd.z() <= w.z_max_m) return true;
+  }
+  return false;
+}
+
+double MapSpaceEvidence::ImpossibleFraction(const std::vector<Eigen::Vector3f>& model_points_world,
+                                            const Eigen::Vector3f& query_center_world) const {
+  if (model_points_world.empty()) return 0.0;
+  std::size_t n = 0;
+  for (const auto& p : model_points_world) n += Impossible(p, query_center_world) ? 1 : 0;
+  return static_cast<double>(n) / static_cast<double>(model_points_world.size());
+}
+
+}  // namespace objscan::scanning
