@@ -348,7 +348,7 @@ struct Scanner::State {
         if (noise->second == rev.first) continue;
         noise_labels.erase(noise);
       }
-      input.components.push_back({c.label, rev.first});
+      input.components.push_back({c.label, rev.first, c.points.size()});
       included.insert(c.label);
     }
     for (const auto& [a, b] : graph.Edges()) {

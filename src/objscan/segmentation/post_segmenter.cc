@@ -1,6 +1,7 @@
 #include "objscan/segmentation/post_segmenter.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -20,6 +21,7 @@ void PostSegmenterOptions::Validate() const {
   config::Require(gain_reference == "max" || gain_reference == "mean" || gain_reference == "min", "gain_reference",
                   "must be max, mean or min");
   config::RequireInRange("merge_min_gain", merge_min_gain, -1.0, 1.0);
+  config::RequireInRange("object_merge_min_gain", object_merge_min_gain, -1.0, 1.0);
   alpha_expansion.Validate();
 }
 
@@ -200,6 +202,69 @@ std::vector<std::vector<int>> PostSegmenter::SplitInstances(const PostSegmenterI
   std::sort(result.begin(), result.end());  // members are sorted indices: order by smallest index
   ++stats->splits;
   return result;
+}
+
+void PostSegmenter::MergeAdjacentObjects(const PostSegmenterInput& input, const std::vector<std::pair<int, int>>& edges,
+                                         int none_label, std::vector<std::pair<std::vector<int>, int>>* objects,
+                                         PostSegmenterStats* stats) {
+  auto& objs = *objects;
+  bool any_size = false;
+  for (const auto& c : input.components) any_size = any_size || c.num_points > 0;
+  auto size_of = [&](const std::vector<int>& members) {
+    double n = 0.0;
+    for (int i : members) n += any_size ? static_cast<double>(input.components[static_cast<std::size_t>(i)].num_points) : 1.0;
+    return n;
+  };
+  std::vector<int> object_of(input.components.size(), -1);
+  while (true) {
+    for (std::size_t o = 0; o < objs.size(); ++o) {
+      for (int i : objs[o].first) object_of[static_cast<std::size_t>(i)] = static_cast<int>(o);
+    }
+    // Adjacent pairs of labelled objects, each once.
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto& [a, b] : edges) {
+      int p = object_of[static_cast<std::size_t>(a)], q = object_of[static_cast<std::size_t>(b)];
+      if (p == q || p < 0 || q < 0) continue;
+      if (objs[static_cast<std::size_t>(p)].second == none_label || objs[static_cast<std::size_t>(q)].second == none_label) continue;
+      pairs.emplace_back(std::min(p, q), std::max(p, q));
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    if (pairs.empty()) return;
+    auto union_of = [&](int p, int q) {
+      std::vector<int> m = objs[static_cast<std::size_t>(p)].first;
+      m.insert(m.end(), objs[static_cast<std::size_t>(q)].first.begin(), objs[static_cast<std::size_t>(q)].first.end());
+      std::sort(m.begin(), m.end());
+      return m;
+    };
+    std::vector<std::vector<int>> unions;
+    for (const auto& o : objs) unions.push_back(o.first);
+    for (const auto& [p, q] : pairs) unions.push_back(union_of(p, q));
+    PrefetchGroups(input, unions, stats);
+    double best_gain = -std::numeric_limits<double>::infinity();
+    std::pair<int, int> best{-1, -1};
+    for (const auto& [p, q] : pairs) {
+      const auto& mp = objs[static_cast<std::size_t>(p)].first;
+      const auto& mq = objs[static_cast<std::size_t>(q)].first;
+      const double np = size_of(mp), nq = size_of(mq);
+      const double fp = MaxObjectness(GroupMatches(input, mp, nullptr));
+      const double fq = MaxObjectness(GroupMatches(input, mq, nullptr));
+      const double fpq = MaxObjectness(GroupMatches(input, union_of(p, q), nullptr));
+      const double gain = fpq - (np * fp + nq * fq) / std::max(1e-12, np + nq);
+      if (gain > best_gain) {
+        best_gain = gain;
+        best = {p, q};
+      }
+    }
+    if (!(best_gain >= options_.object_merge_min_gain)) return;
+    auto& keep = objs[static_cast<std::size_t>(best.first)];
+    auto& gone = objs[static_cast<std::size_t>(best.second)];
+    // The merged object keeps the label of its larger part.
+    if (size_of(gone.first) > size_of(keep.first)) keep.second = gone.second;
+    keep.first = union_of(best.first, best.second);
+    objs.erase(objs.begin() + best.second);
+    ++stats->object_merges;
+  }
 }
 
 PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
@@ -393,6 +458,13 @@ PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
     } else {
       parts.emplace_back(members, label);
     }
+  }
+
+  if (options_.graph_cuts && options_.merge_objects) {
+    std::vector<std::pair<int, int>> edges;
+    edges.reserve(edge_ids.size());
+    for (const auto& [a, b] : edge_ids) edges.emplace_back(index_of[a], index_of[b]);
+    MergeAdjacentObjects(input, edges, none_label, &parts, &stats);
   }
 
   out.object_of_component.assign(static_cast<std::size_t>(n), -1);

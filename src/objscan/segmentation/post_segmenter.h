@@ -61,6 +61,15 @@ struct PostSegmenterOptions {
   // gain mode: what the union is compared with, "max" = max(F(c), F(d)), "mean" = their mean
   // weighted by nothing, "min" = min(F(c), F(d)).
   std::string gain_reference = "max";
+  // Beyond the paper: after the graph cut, adjacent objects merge, best first, while the union's
+  // full-model objectness exceeds the point-weighted mean of theirs by at least object_merge_min_gain.
+  // Pairwise component tests miss objects of three or more parts, and a small fragment scores high
+  // against a small model (a lamp's stem as a radio), which blocks every pairwise merge with it.
+  // false = the paper (objects are the graph cut's groups). A gain of 0.03 keeps a small object off a
+  // large neighbour, whose objectness a small addition barely moves (measured on procedural rooms,
+  // docs/results/procedural-3seeds-session4.md).
+  bool merge_objects = true;
+  double object_merge_min_gain = 0.03;
   AlphaExpansionOptions alpha_expansion;
 
   template <class V>
@@ -74,6 +83,8 @@ struct PostSegmenterOptions {
     v("smoothness_scale", smoothness_scale);
     v("merge_min_gain", merge_min_gain);
     v("gain_reference", gain_reference);
+    v("merge_objects", merge_objects);
+    v("object_merge_min_gain", object_merge_min_gain);
     v("alpha_expansion", alpha_expansion);
   }
   void Validate() const;
@@ -84,6 +95,7 @@ struct PostSegmenterInput {
   struct Component {
     std::int32_t id = 0;          // ComponentGraph's Component::label
     std::uint64_t revision = 0;   // changes whenever the component's points change
+    std::size_t num_points = 0;   // its size (weights objects in merge_objects; 0 = all weigh 1)
   };
   std::vector<Component> components;                        // ids unique
   std::vector<std::pair<std::int32_t, std::int32_t>> edges; // adjacent component ids, a != b
@@ -122,6 +134,7 @@ struct PostSegmenterStats {
   int group_cache_hits = 0;
   int num_labels = 0;          // labels in the graph cut (categories present in some M(c), plus none)
   int splits = 0;              // same-label groups split into instances
+  int object_merges = 0;       // adjacent objects merged (merge_objects)
 };
 
 struct PostSegmentation {
@@ -177,6 +190,10 @@ class PostSegmenter {
   // Fills the group cache for these unions (indices into the current input) with one batch query.
   void PrefetchGroups(const PostSegmenterInput& input, const std::vector<std::vector<int>>& unions,
                       PostSegmenterStats* stats);
+  // merge_objects: merges adjacent objects (member indices, graph-cut label) in place.
+  void MergeAdjacentObjects(const PostSegmenterInput& input, const std::vector<std::pair<int, int>>& edges,
+                            int none_label, std::vector<std::pair<std::vector<int>, int>>* objects,
+                            PostSegmenterStats* stats);
   // Splits a same-label group into instances; returns its parts (one part = no split).
   std::vector<std::vector<int>> SplitInstances(const PostSegmenterInput& input, const std::vector<int>& members,
                                                const std::vector<std::pair<int, int>>& group_edges,

@@ -8,7 +8,9 @@ namespace objscan::segmentation {
 PostSegmenterInput PostSegmenterInput::FromGraph(const ComponentGraph& graph) {
   PostSegmenterInput input;
   input.components.reserve(graph.size());
-  for (const segmentation::Component& c : graph.components()) input.components.push_back({c.label, c.revision});
+  for (const segmentation::Component& c : graph.components()) {
+    input.components.push_back({c.label, c.revision, c.points.size()});
+  }
   input.edges = graph.Edges();
   return input;
 }

@@ -110,6 +110,7 @@ class FakeMatcher : public ComponentMatcher {
 PostSegmenterOptions PaperOptions() {
   PostSegmenterOptions options;
   options.smoothness = "paper";
+  options.merge_objects = false;
   return options;
 }
 
@@ -308,6 +309,38 @@ TEST(PostSegmenterTest, GainSmoothnessKeepsTheMonitorOffTheDesk) {
   EXPECT_NE(ObjectOf(merged, input, 4), ObjectOf(merged, input, 3));
 }
 
+// A lamp in three pieces (shade 1, stem 2, base 3) whose pieces alone look like other things, on a
+// night stand {4, 5}. Each pairwise union of lamp pieces is more of the lamp than its parts, but the
+// graph cut keeps the stem a toilet and the base a radio (their own matches are strong and the gains
+// small). Merging adjacent objects while the union beats their point-weighted mean objectness joins
+// the lamp and leaves the night stand alone: lamp + night stand is 3/5 of a lamp (F = 0.35).
+TEST(PostSegmenterTest, MergingAdjacentObjectsJoinsAPieceMealLampButNotItsNightStand) {
+  FakeMatcher matcher({{{1, 2, 3}, Category::kLamp, 1}, {{4, 5}, Category::kNightStand, 2}});
+  matcher.SetAllEntries({1}, {{Category::kLamp, 0.8}});
+  matcher.SetAllEntries({2}, {{Category::kToilet, 0.9}});
+  matcher.SetAllEntries({3}, {{Category::kRadio, 0.9}});
+  PostSegmenterInput input = MakeInput({1, 2, 3, 4, 5}, {{1, 2}, {2, 3}, {3, 4}, {4, 5}});
+  const std::size_t points[] = {500, 100, 200, 1000, 1000};
+  for (std::size_t i = 0; i < 5; ++i) input.components[i].num_points = points[i];
+  PostSegmenterOptions options;
+  options.merge_objects = false;
+  const PostSegmentation plain = PostSegmenter(options, &matcher).Update(input);
+  EXPECT_EQ(plain.objects.size(), 4u);  // shade, stem, base apart; the night stand whole
+  EXPECT_EQ(plain.stats.object_merges, 0);
+  options.merge_objects = true;
+  options.object_merge_min_gain = 0.0;
+  const PostSegmentation merged = PostSegmenter(options, &matcher).Update(input);
+  ASSERT_EQ(merged.objects.size(), 2u);
+  EXPECT_EQ(merged.objects[0].component_ids, (std::vector<std::int32_t>{1, 2, 3}));
+  EXPECT_EQ(merged.objects[0].category, Category::kLamp);  // the label of its largest piece
+  EXPECT_NEAR(merged.objects[0].objectness, 0.98, 1e-12);
+  EXPECT_EQ(merged.objects[1].component_ids, (std::vector<std::int32_t>{4, 5}));
+  EXPECT_EQ(merged.stats.object_merges, 2);
+  // A minimum gain above what the pieces offer (0.33 for the first merge) keeps them apart.
+  options.object_merge_min_gain = 0.5;
+  EXPECT_EQ(PostSegmenter(options, &matcher).Update(input).objects.size(), 4u);
+}
+
 TEST(PostSegmenterTest, NoiseAndCompleteThresholds) {
   // Object A {1,2} fully seen (0.98: complete); object B {3,4,5} seen as one of three parts
   // (0.98/3: partial); component 9 matches nothing, neither alone nor with its neighbour 2 (none
@@ -448,7 +481,9 @@ TEST(PostSegmenterTest, GainSmoothnessWarmStepQueriesOnlyWhatChanged) {
   std::vector<FakeMatcher::TrueObject> objects;
   PostSegmenterInput input = ChainInput(&objects);
   FakeMatcher matcher(objects);
-  PostSegmenter segmenter(PostSegmenterOptions{}, &matcher);
+  PostSegmenterOptions options;
+  options.merge_objects = false;  // its object unions are counted in the test below
+  PostSegmenter segmenter(options, &matcher);
   const PostSegmentation cold = segmenter.Update(input);
   // M(c) of every component (data term), F(c) of every component and F(c u d) of every edge (the
   // gain); the objects are true pairs, already known.
@@ -467,6 +502,23 @@ TEST(PostSegmenterTest, GainSmoothnessWarmStepQueriesOnlyWhatChanged) {
   EXPECT_EQ(matcher.component_calls, 10);
   EXPECT_EQ(matcher.full_calls, 10 + 19);
   EXPECT_EQ(warm.objects.size(), 50u);
+}
+
+// Object merging asks for unions of adjacent objects; an unchanged input asks nothing the second time.
+TEST(PostSegmenterTest, ObjectMergingWarmStepQueriesNothingNew) {
+  std::vector<FakeMatcher::TrueObject> objects;
+  PostSegmenterInput input = ChainInput(&objects);
+  FakeMatcher matcher(objects);
+  PostSegmenterOptions options;
+  options.merge_objects = true;
+  PostSegmenter segmenter(options, &matcher);
+  const PostSegmentation cold = segmenter.Update(input);
+  EXPECT_GT(cold.stats.group_queries, 0);
+  matcher.ResetCounts();
+  const PostSegmentation warm = segmenter.Update(input);
+  EXPECT_EQ(warm.stats.group_queries, 0);
+  EXPECT_EQ(matcher.full_calls, 0);
+  EXPECT_EQ(warm.objects.size(), cold.objects.size());
 }
 
 TEST(PostSegmenterTest, EmptyInputAndBadInput) {
@@ -492,6 +544,7 @@ TEST(PostSegmenterTest, InputFromComponentGraph) {
   components[0].revision = 5;
   components[1].label = 4;
   components[1].revision = 6;
+  components[1].points.assign(3, Eigen::Vector3f::Zero());
   components[2].label = 9;
   components[2].revision = 7;
   ComponentGraph graph;
@@ -500,6 +553,7 @@ TEST(PostSegmenterTest, InputFromComponentGraph) {
   ASSERT_EQ(input.components.size(), 3u);
   EXPECT_EQ(input.components[1].id, 4);
   EXPECT_EQ(input.components[1].revision, 6u);
+  EXPECT_EQ(input.components[1].num_points, 3u);
   EXPECT_EQ(input.edges, (std::vector<std::pair<std::int32_t, std::int32_t>>{{2, 4}, {4, 9}}));
 }
 
@@ -510,7 +564,8 @@ TEST(PostSegmenterTest, OptionsListEveryField) {
   for (const auto& kv : values) keys.push_back(kv.first);
   EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
                                             "split_instances", "graph_cuts", "smoothness", "smoothness_scale",
-                                            "merge_min_gain", "gain_reference", "alpha_expansion.max_sweeps",
+                                            "merge_min_gain", "gain_reference", "merge_objects",
+                                            "object_merge_min_gain", "alpha_expansion.max_sweeps",
                                             "alpha_expansion.min_improvement"}));
 }
 
