@@ -43,10 +43,7 @@ TEST(ExposedVoxels, AnUndersideStaysHiddenWhenAirReachesUnderTheFloorThroughADoo
   // The room of RoomWithBox without its y = 3 wall but for two stubs: a 1 m doorway joins the room's
   // air to the outside, which runs under the floor.
   world::Scene scene("open room");
-  world::SceneObject floor;
-  floor.category = world::Category::kFloor;
-  floor.mesh = geometry::MakeQuadXY(-0.1, -0.1, 3.1, 3.1);
-  scene.Add(floor);
+  scene.Add(sim::testing::FloorObject(-0.1, -0.1, 3.1, 3.1));
   scene.Add(BoxObject({-0.1, -0.1, 0}, {3.1, 0, 2.5}, world::Category::kWall));
   scene.Add(BoxObject({-0.1, 0, 0}, {0, 3.0, 2.5}, world::Category::kWall));
   scene.Add(BoxObject({3.0, 0, 0}, {3.1, 3.0, 2.5}, world::Category::kWall));

@@ -13,13 +13,18 @@ inline world::SceneObject BoxObject(const Eigen::Vector3d& lo, const Eigen::Vect
   return o;
 }
 
+// A floor quad over [x0, x1] x [y0, y1] at z = 0.
+inline world::SceneObject FloorObject(double x0, double y0, double x1, double y1) {
+  world::SceneObject floor;
+  floor.category = world::Category::kFloor;
+  floor.mesh = geometry::MakeQuadXY(x0, y0, x1, y1);
+  return floor;
+}
+
 // A closed room [0, size_x] x [0, size_y] with a floor and 0.1 m thick, 2.5 m high walls outside it.
 inline world::Scene Room(double size_x, double size_y) {
   world::Scene scene("room");
-  world::SceneObject floor;
-  floor.category = world::Category::kFloor;
-  floor.mesh = geometry::MakeQuadXY(-0.1, -0.1, size_x + 0.1, size_y + 0.1);
-  scene.Add(floor);
+  scene.Add(FloorObject(-0.1, -0.1, size_x + 0.1, size_y + 0.1));
   const double t = 0.1, h = 2.5;
   scene.Add(BoxObject({-t, -t, 0}, {size_x + t, 0, h}, world::Category::kWall));
   scene.Add(BoxObject({-t, size_y, 0}, {size_x + t, size_y + t, h}, world::Category::kWall));
