@@ -69,14 +69,15 @@ std::vector<char> ExposedVoxels(const world::Scene& scene, const std::vector<Eig
   }
 
   // The seed: its own voxel when empty, else the nearest empty voxel within two.
-  Eigen::Vector3i seed = grid.KeyOf(seed_world);
+  const Eigen::Vector3i seed_key = grid.KeyOf(seed_world);
+  Eigen::Vector3i seed = seed_key;
   bool found = grid.Inside(seed) && state[grid.Index(seed)] == 0;
   for (int r = 1; r <= 2 && !found; ++r) {
     double best = 1e18;
     for (int dz = -r; dz <= r; ++dz)
       for (int dy = -r; dy <= r; ++dy)
         for (int dx = -r; dx <= r; ++dx) {
-          const Eigen::Vector3i k = grid.KeyOf(seed_world) + Eigen::Vector3i(dx, dy, dz);
+          const Eigen::Vector3i k = seed_key + Eigen::Vector3i(dx, dy, dz);
           if (!grid.Inside(k) || state[grid.Index(k)] != 0) continue;
           const double d = ((k.cast<double>() + Eigen::Vector3d::Constant(0.5)) * voxel_m - seed_world).squaredNorm();
           if (d < best) {

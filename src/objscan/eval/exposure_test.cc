@@ -40,8 +40,8 @@ TEST(ExposedVoxels, OuterFacesOfABoxOnTheFloorAreExposedItsUndersideAndInsideAre
 }
 
 TEST(ExposedVoxels, AnUndersideStaysHiddenWhenAirReachesUnderTheFloorThroughADoorway) {
-  // The room of RoomWithBox without its y = 3 wall but for two stubs: a 1 m doorway joins the room's
-  // air to the outside, which runs under the floor.
+  // The room of RoomWithBox with a 1 m doorway in its y = 3 wall (two wall pieces either side): the
+  // doorway joins the room's air to the outside, which runs under the floor.
   world::Scene scene("open room");
   scene.Add(sim::testing::FloorObject(-0.1, -0.1, 3.1, 3.1));
   scene.Add(BoxObject({-0.1, -0.1, 0}, {3.1, 0, 2.5}, world::Category::kWall));

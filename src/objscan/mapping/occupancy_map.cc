@@ -7,6 +7,17 @@
 #include <cmath>
 
 namespace objscan::mapping {
+namespace {
+
+// Cells [*first, *last] along one axis of a grid (origin `lo`, cell size `res`, `count` cells) that
+// an octree leaf spanning [c - half, c + half] overlaps (by more than a rounding error); empty when
+// *first > *last.
+void LeafCellRange(double c, double half, double lo, double res, int count, int* first, int* last) {
+  *first = std::max(0, static_cast<int>(std::floor((c - half - lo) / res + 1e-6)));
+  *last = std::min(count - 1, static_cast<int>(std::ceil((c + half - lo) / res - 1e-6)) - 1);
+}
+
+}  // namespace
 
 void OccupancyMapOptions::Validate() const {
   config::RequireInRange("resolution_m", resolution_m, 0.005, 1.0);
@@ -179,10 +190,9 @@ sim::OccupancyGrid2D OccupancyMap::GridOver(const geometry::Aabb3& box, double m
     // Leaves whose centre lies outside the band only graze it.
     if (c.z() < min_z_m - 0.5 * voxel || c.z() > max_z_m + 0.5 * voxel) continue;
     const bool occ = tree.isNodeOccupied(*it);
-    const int ix0 = std::max(0, static_cast<int>(std::floor((c.x() - half - grid.origin_m.x()) / res + 1e-6)));
-    const int iy0 = std::max(0, static_cast<int>(std::floor((c.y() - half - grid.origin_m.y()) / res + 1e-6)));
-    const int ix1 = std::min(grid.width - 1, static_cast<int>(std::ceil((c.x() + half - grid.origin_m.x()) / res - 1e-6)) - 1);
-    const int iy1 = std::min(grid.height - 1, static_cast<int>(std::ceil((c.y() + half - grid.origin_m.y()) / res - 1e-6)) - 1);
+    int ix0, ix1, iy0, iy1;
+    LeafCellRange(c.x(), half, grid.origin_m.x(), res, grid.width, &ix0, &ix1);
+    LeafCellRange(c.y(), half, grid.origin_m.y(), res, grid.height, &iy0, &iy1);
     for (int iy = iy0; iy <= iy1; ++iy) {
       for (int ix = ix0; ix <= ix1; ++ix) {
         const std::size_t k = grid.Index(ix, iy);
@@ -223,10 +233,7 @@ OccupancySnapshot OccupancyMap::Snapshot(const geometry::Aabb3& box) const {
     const Occupancy state = tree.isNodeOccupied(*it) ? Occupancy::kOccupied : Occupancy::kFree;
     int i0[3], i1[3];
     const int dims[3] = {n.x(), n.y(), n.z()};
-    for (int a = 0; a < 3; ++a) {
-      i0[a] = std::max(0, static_cast<int>(std::floor((c(a) - half - lo(a)) / res + 1e-6)));
-      i1[a] = std::min(dims[a] - 1, static_cast<int>(std::ceil((c(a) + half - lo(a)) / res - 1e-6)) - 1);
-    }
+    for (int a = 0; a < 3; ++a) LeafCellRange(c(a), half, lo(a), res, dims[a], &i0[a], &i1[a]);
     for (int z = i0[2]; z <= i1[2]; ++z)
       for (int y = i0[1]; y <= i1[1]; ++y)
         for (int x = i0[0]; x <= i1[0]; ++x) snap.cells[snap.Index(x, y, z)] = state;

@@ -59,12 +59,20 @@ struct OccupancySnapshot {
 
   // kUnknown outside the box.
   Occupancy At(const Eigen::Vector3f& p_world) const {
+    std::size_t index = 0;
+    return IndexOf(p_world, &index) ? cells[index] : Occupancy::kUnknown;
+  }
+  // The index of the voxel holding p; false when p is outside the box (or not finite).
+  bool IndexOf(const Eigen::Vector3f& p_world, std::size_t* index) const {
     const double inv = 1.0 / voxel_size_m;
     const double gx = (p_world.x() - origin_world.x()) * inv, gy = (p_world.y() - origin_world.y()) * inv,
                  gz = (p_world.z() - origin_world.z()) * inv;
-    if (!(gx >= 0 && gy >= 0 && gz >= 0 && gx < nx && gy < ny && gz < nz)) return Occupancy::kUnknown;
-    return cells[Index(static_cast<int>(gx), static_cast<int>(gy), static_cast<int>(gz))];
+    if (!(gx >= 0 && gy >= 0 && gz >= 0 && gx < nx && gy < ny && gz < nz)) return false;
+    // Non-negative here, so truncation is floor.
+    *index = Index(static_cast<int>(gx), static_cast<int>(gy), static_cast<int>(gz));
+    return true;
   }
+  bool Contains(int x, int y, int z) const { return x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz; }
   std::size_t Index(int x, int y, int z) const {
     return static_cast<std::size_t>(x) + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(y) + static_cast<std::size_t>(ny) * z);
   }

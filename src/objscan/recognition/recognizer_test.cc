@@ -80,7 +80,7 @@ TEST_F(RecognizerTest, RetrievesTheRightModelAmongDistractorsAndPlacesIt) {
   }
 }
 
-// Space evidence that calls impossible every point above a height (world z), and counts its calls.
+// Space evidence that calls impossible every point above a height (world z).
 class CeilingEvidence : public SpaceEvidence {
  public:
   explicit CeilingEvidence(float ceiling_z_m) : ceiling_z_m_(ceiling_z_m) {}

@@ -10,8 +10,7 @@ MapSpaceEvidence::MapSpaceEvidence(const mapping::OccupancySnapshot& snapshot,
   impossible_.assign(s.cells.size(), 0);
   auto free_at = [&s](int x, int y, int z) {
     // Outside the snapshot nothing is known.
-    if (x < 0 || y < 0 || z < 0 || x >= s.nx || y >= s.ny || z >= s.nz) return false;
-    return s.cells[s.Index(x, y, z)] == mapping::Occupancy::kFree;
+    return s.Contains(x, y, z) && s.cells[s.Index(x, y, z)] == mapping::Occupancy::kFree;
   };
   for (int z = 0; z < s.nz; ++z) {
     for (int y = 0; y < s.ny; ++y) {
@@ -29,14 +28,8 @@ MapSpaceEvidence::MapSpaceEvidence(const mapping::OccupancySnapshot& snapshot,
 }
 
 bool MapSpaceEvidence::Impossible(const Eigen::Vector3f& p, const Eigen::Vector3f& query_center) const {
-  const auto& s = snapshot_;
-  const double inv = 1.0 / s.voxel_size_m;
-  const double gx = (p.x() - s.origin_world.x()) * inv, gy = (p.y() - s.origin_world.y()) * inv,
-               gz = (p.z() - s.origin_world.z()) * inv;
-  if (gx >= 0 && gy >= 0 && gz >= 0 && gx < s.nx && gy < s.ny && gz < s.nz &&
-      impossible_[s.Index(static_cast<int>(gx), static_cast<int>(gy), static_cast<int>(gz))]) {
-    return true;
-  }
+  std::size_t index = 0;
+  if (snapshot_.IndexOf(p, &index) && impossible_[index]) return true;
   if (structure_.has_floor && p.z() < structure_.floor_height_m - options_.below_floor_m) return true;
   const Eigen::Vector3d pd = p.cast<double>(), cd = query_center.cast<double>();
   for (const mapping::WallPlane& w : structure_.walls) {

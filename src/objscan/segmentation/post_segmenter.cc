@@ -237,32 +237,33 @@ void PostSegmenter::MergeAdjacentObjects(const PostSegmenterInput& input, const 
       std::sort(m.begin(), m.end());
       return m;
     };
+    // Every object, then every adjacent pair's union (parallel to `pairs`), in one batch.
     std::vector<std::vector<int>> unions;
     for (const auto& o : objs) unions.push_back(o.first);
     for (const auto& [p, q] : pairs) unions.push_back(union_of(p, q));
     PrefetchGroups(input, unions, stats);
     double best_gain = -std::numeric_limits<double>::infinity();
-    std::pair<int, int> best{-1, -1};
-    for (const auto& [p, q] : pairs) {
-      const auto& mp = objs[static_cast<std::size_t>(p)].first;
-      const auto& mq = objs[static_cast<std::size_t>(q)].first;
+    std::size_t best = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const auto& mp = objs[static_cast<std::size_t>(pairs[k].first)].first;
+      const auto& mq = objs[static_cast<std::size_t>(pairs[k].second)].first;
       const double np = size_of(mp), nq = size_of(mq);
       const double fp = MaxObjectness(GroupMatches(input, mp, nullptr));
       const double fq = MaxObjectness(GroupMatches(input, mq, nullptr));
-      const double fpq = MaxObjectness(GroupMatches(input, union_of(p, q), nullptr));
+      const double fpq = MaxObjectness(GroupMatches(input, unions[objs.size() + k], nullptr));
       const double gain = fpq - (np * fp + nq * fq) / std::max(1e-12, np + nq);
       if (gain > best_gain) {
         best_gain = gain;
-        best = {p, q};
+        best = k;
       }
     }
     if (!(best_gain >= options_.object_merge_min_gain)) return;
-    auto& keep = objs[static_cast<std::size_t>(best.first)];
-    auto& gone = objs[static_cast<std::size_t>(best.second)];
+    auto& keep = objs[static_cast<std::size_t>(pairs[best].first)];
+    auto& gone = objs[static_cast<std::size_t>(pairs[best].second)];
     // The merged object keeps the label of its larger part.
     if (size_of(gone.first) > size_of(keep.first)) keep.second = gone.second;
-    keep.first = union_of(best.first, best.second);
-    objs.erase(objs.begin() + best.second);
+    keep.first = std::move(unions[objs.size() + best]);
+    objs.erase(objs.begin() + pairs[best].second);
     ++stats->object_merges;
   }
 }
