@@ -1,6 +1,6 @@
 // `objscan db`: build, inspect and evaluate the 3D model database (paper §4.2).
 //   objscan db build --models DIR|procedural --out F.db   -> JSON summary on stdout
-//   objscan db info F.db                                  -> JSON counts per category
+//   objscan db info F.db                                  -> JSON counts and model sizes per category
 //   objscan db eval --db F.db [--queries procedural]      -> JSON accuracy, objectness, timing
 #include <cstdio>
 #include <map>
@@ -14,6 +14,7 @@
 #include "objscan/common/config.h"
 #include "objscan/common/error.h"
 #include "objscan/common/timer.h"
+#include "objscan/recognition/category_extent.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/database_eval.h"
 #include "objscan/recognition/model_database.h"
@@ -81,12 +82,23 @@ int RunInfo(const DbArgs& a) {
     c["components"] += e.kind == recognition::EntryKind::kComponent ? 1 : 0;
     c["pairs"] += e.kind == recognition::EntryKind::kPair ? 1 : 0;
   }
+  // Model sizes per category: what the size-plausibility check of recognized objects compares with.
+  const recognition::CategoryExtents extents = recognition::CategoryExtents::FromDatabase(db);
+  nlohmann::json sizes = nlohmann::json::object();
+  for (int c = 0; c < world::kNumObjectCategories; ++c) {
+    const recognition::ExtentRange* r = extents.Find(static_cast<world::Category>(c));
+    if (r == nullptr) continue;
+    sizes[world::CategoryName(static_cast<world::Category>(c))] = {
+        {"height_m", {r->min.height_m, r->max.height_m}},
+        {"footprint_diagonal_m", {r->min.footprint_diagonal_m, r->max.footprint_diagonal_m}}};
+  }
   nlohmann::json j;
   j["file"] = a.info_db;
   j["format_version"] = recognition::ModelDatabase::kFormatVersion;
   j["models"] = db.models().size();
   j["entries"] = db.entries().size();
   j["categories"] = counts;
+  j["model_sizes"] = sizes;
   j["vocabulary_words"] = db.vocabulary().num_words();
   j["keypoints_per_entry"] = db.settings().keypoints.num_keypoints;
   j["descriptor"] = db.settings().descriptor.type;

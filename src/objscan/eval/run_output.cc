@@ -84,6 +84,7 @@ std::string RunJson(const RunOutputInputs& in) {
              {"given_up", o.given_up},
              {"pose", ModelPoseJson(o.T_world_model)},
              {"points", o.points}};
+    if (o.size_rejected_category) obj["size_rejected_category"] = world::CategoryName(*o.size_rejected_category);
     if (o.gt_instance > 0) obj["gt_instance"] = o.gt_instance;
     objects.push_back(obj);
   }

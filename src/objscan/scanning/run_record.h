@@ -43,6 +43,8 @@ struct StepRecord {
 struct ObjectRecord {
   int id = -1;                                  // smallest pre-segment label of the object
   std::optional<world::Category> category;      // nullopt: unrecognized
+  // The label it had before the size check found no model of that category its size (nullopt: kept).
+  std::optional<world::Category> size_rejected_category;
   std::string model;                            // best database model name ("" when none)
   int model_index = -1;                         // into the database's models
   double objectness = 0.0;

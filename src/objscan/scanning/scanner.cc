@@ -19,6 +19,7 @@
 #include "objscan/recognition/recognizer.h"
 #include "objscan/recognition/component_matcher.h"
 #include "objscan/segmentation/incremental_segmenter.h"
+#include "objscan/scanning/size_regrouping.h"
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/sim/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
@@ -198,6 +199,7 @@ struct Scanner::State {
         recognizer(db, c.recognition),
         matcher(recognizer, c.scanner.threads),
         post_segmenter(c.postsegmentation, &matcher),
+        category_extents(recognition::CategoryExtents::FromDatabase(db)),
         nbv(c.nbv),
         robot(c.robot, ChooseStart(s, c.robot, c.navigation)),
         visited(1, robot.base().xy_m),
@@ -654,6 +656,7 @@ struct Scanner::State {
   recognition::RecognizerComponentMatcher matcher;
   std::unique_ptr<MapSpaceEvidence> space_evidence;  // rebuilt at every analysis
   segmentation::PostSegmenter post_segmenter;
+  const recognition::CategoryExtents category_extents;  // of the database's models, for the size check
   planning::NextBestView nbv;
   planning::CameraFrustum frustum;
   sim::Robot robot;
@@ -800,6 +803,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   rec.objects.clear();
   // Fragment absorption candidates, parallel to rec.objects.
   std::vector<FragmentCandidate> candidates;
+  // The full-model matches of each object (null for completed ones, which are their model).
+  std::vector<const segmentation::MatchResult*> full_matches;
   for (const auto& c : s.completed) {
     ObjectRecord o;
     o.id = c.id;
@@ -819,6 +824,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     f.may_be_absorbed = false;
     s.SetModel(c.model, &f);
     candidates.push_back(std::move(f));
+    full_matches.push_back(nullptr);
   }
   for (int k : s.objects) {
     const auto& r = s.post.objects[k];
@@ -844,14 +850,91 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     rec.objects.push_back(o);
     f.objectness = r.objectness;
     candidates.push_back(std::move(f));
+    full_matches.push_back(&r.full_model_matches);
   }
   // Pieces lying on a recognized neighbour's model join it (their labels, not their category).
-  const std::vector<int> host = AbsorbExplainedFragments(candidates, s.config.scanner.fragments);
+  std::vector<int> host = AbsorbExplainedFragments(candidates, s.config.scanner.fragments);
   for (std::size_t i = 0; i < host.size(); ++i) {
     if (host[i] == static_cast<int>(i)) continue;
     auto& into = rec.objects[static_cast<std::size_t>(host[i])].labels;
     into.insert(into.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
     std::sort(into.begin(), into.end());
+  }
+  // Pieces too small for their label join a neighbour whose category the union fits
+  // (size_regrouping.h); then a label no model of the object's size has goes, or is replaced by the
+  // best plausible category among the object's full-model matches.
+  std::vector<std::vector<Eigen::Vector3f>> object_points(host.size());
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    auto& into = object_points[static_cast<std::size_t>(host[i])];
+    into.insert(into.end(), candidates[i].points_world.begin(), candidates[i].points_world.end());
+  }
+  if (s.config.scanner.size_check.enabled && s.config.scanner.size_check.regroup) {
+    std::vector<RegroupCandidate> pieces(host.size());
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      if (host[i] != static_cast<int>(i)) continue;
+      pieces[i].points_world = object_points[i];
+      pieces[i].category = rec.objects[i].complete ? std::nullopt : rec.objects[i].category;
+      pieces[i].fixed = rec.objects[i].complete;
+    }
+    std::vector<std::vector<Eigen::Vector3f>> piece_points(host.size());
+    for (std::size_t i = 0; i < host.size(); ++i) piece_points[i] = pieces[i].points_world;
+    const std::vector<std::pair<int, int>> adjacency =
+        ObjectsWithinDistance(piece_points, s.config.scanner.size_check.adjacency_m);
+    const RegroupResult regroup =
+        RegroupImplausibleFragments(pieces, adjacency, s.category_extents, s.config.scanner.size_check,
+                                    [&](const std::vector<int>& members) {
+                                      std::vector<std::int32_t> labels;
+                                      for (int m : members) {
+                                        const auto& l = rec.objects[static_cast<std::size_t>(m)].labels;
+                                        labels.insert(labels.end(), l.begin(), l.end());
+                                      }
+                                      std::sort(labels.begin(), labels.end());
+                                      labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+                                      std::vector<world::Category> categories;
+                                      for (const auto& m : s.matcher.Match(labels, segmentation::MatchScope::kFullModels).models) {
+                                        categories.push_back(m.category);
+                                      }
+                                      return categories;
+                                    });
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      if (host[i] != static_cast<int>(i)) continue;
+      const int into = regroup.host[i];
+      if (into == static_cast<int>(i)) {
+        if (!rec.objects[i].complete) rec.objects[i].category = regroup.category[i];
+        continue;
+      }
+      auto& labels = rec.objects[static_cast<std::size_t>(into)].labels;
+      labels.insert(labels.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
+      std::sort(labels.begin(), labels.end());
+      auto& pts = object_points[static_cast<std::size_t>(into)];
+      pts.insert(pts.end(), object_points[i].begin(), object_points[i].end());
+      object_points[i].clear();
+    }
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      if (host[i] == static_cast<int>(i) && regroup.host[i] != static_cast<int>(i)) host[i] = regroup.host[i];
+    }
+  }
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    ObjectRecord& o = rec.objects[i];
+    if (host[i] != static_cast<int>(i) || o.complete || !o.category || !s.config.scanner.size_check.enabled) continue;
+    const recognition::ObjectExtent extent = recognition::MeasureExtent(object_points[i]);
+    const auto plausible = [&](world::Category c) {
+      return recognition::IsPlausibleExtent(extent, s.category_extents.Find(c), s.config.scanner.size_check);
+    };
+    if (plausible(*o.category)) continue;
+    o.size_rejected_category = o.category;
+    o.category.reset();
+    if (!s.config.scanner.size_check.relabel || full_matches[i] == nullptr) continue;
+    const segmentation::ModelMatch* best = nullptr;
+    for (const auto& m : full_matches[i]->models) {
+      if (plausible(m.category) && (best == nullptr || m.objectness > best->objectness)) best = &m;
+    }
+    if (best == nullptr) continue;
+    o.category = best->category;
+    o.model_index = best->model_id;
+    o.model = best->model_id >= 0 ? s.database.models()[best->model_id].name : "";
+    o.T_world_model = best->T_world_model;
+    o.objectness = best->objectness;
   }
   std::vector<ObjectRecord> kept;
   for (std::size_t i = 0; i < host.size(); ++i) {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "objscan/common/config.h"
+#include "objscan/recognition/category_extent.h"
 #include "objscan/scanning/fragment_absorption.h"
 #include "objscan/scanning/map_space_evidence.h"
 
@@ -50,6 +51,9 @@ struct ScannerOptions {
   double structure_redetect_growth = 0.1;
   // Pieces lying on a recognized neighbour's model are reported as part of it (fragment_absorption.h).
   FragmentAbsorptionOptions fragments;
+  // Reported objects whose size no database model of their category has lose that label
+  // (recognition/category_extent.h).
+  recognition::SizePlausibilityOptions size_check;
   // What counts as impossible space for a recognition hypothesis (used when
   // recognition.space_weight > 0).
   MapSpaceEvidenceOptions space;
@@ -77,6 +81,7 @@ struct ScannerOptions {
     v("structure_reveal_depth_m", structure_reveal_depth_m);
     v("structure_redetect_growth", structure_redetect_growth);
     v("fragments", fragments);
+    v("size_check", size_check);
     v("space", space);
     v("threads", threads);
   }
@@ -100,6 +105,7 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_reveal_depth_m", structure_reveal_depth_m);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
     fragments.Validate();
+    size_check.Validate();
     space.Validate();
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }

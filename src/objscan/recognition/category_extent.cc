@@ -1,0 +1,91 @@
+#include "objscan/recognition/category_extent.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+
+#include "objscan/recognition/model_database.h"
+
+namespace objscan::recognition {
+
+ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_steps) {
+  ObjectExtent e;
+  if (points.empty()) return e;
+  yaw_steps = std::max(1, yaw_steps);
+  float z_min = std::numeric_limits<float>::infinity(), z_max = -z_min;
+  for (const auto& p : points) {
+    z_min = std::min(z_min, p.z());
+    z_max = std::max(z_max, p.z());
+  }
+  e.height_m = static_cast<double>(z_max - z_min);
+  // A rectangle rotated by yaw and by yaw + 90° is the same one, so yaw in [0, 90°) covers all.
+  double best = std::numeric_limits<double>::infinity();
+  const double kPi = 3.14159265358979323846;
+  for (int s = 0; s < yaw_steps; ++s) {
+    const double yaw = 0.5 * kPi * s / yaw_steps;
+    const float c = static_cast<float>(std::cos(yaw)), sn = static_cast<float>(std::sin(yaw));
+    float u_min = std::numeric_limits<float>::infinity(), u_max = -u_min, v_min = u_min, v_max = -u_min;
+    for (const auto& p : points) {
+      const float u = c * p.x() + sn * p.y();
+      const float v = -sn * p.x() + c * p.y();
+      u_min = std::min(u_min, u);
+      u_max = std::max(u_max, u);
+      v_min = std::min(v_min, v);
+      v_max = std::max(v_max, v);
+    }
+    best = std::min(best, std::hypot(static_cast<double>(u_max - u_min), static_cast<double>(v_max - v_min)));
+  }
+  e.footprint_diagonal_m = best;
+  return e;
+}
+
+void CategoryExtents::Add(world::Category category, const ObjectExtent& extent) {
+  const int id = world::CategoryId(category);
+  if (id < 0 || id >= world::kNumObjectCategories) return;
+  ExtentRange& r = ranges_[static_cast<std::size_t>(id)];
+  if (r.num_models == 0) {
+    r.min = r.max = extent;
+  } else {
+    r.min.height_m = std::min(r.min.height_m, extent.height_m);
+    r.min.footprint_diagonal_m = std::min(r.min.footprint_diagonal_m, extent.footprint_diagonal_m);
+    r.max.height_m = std::max(r.max.height_m, extent.height_m);
+    r.max.footprint_diagonal_m = std::max(r.max.footprint_diagonal_m, extent.footprint_diagonal_m);
+  }
+  ++r.num_models;
+}
+
+const ExtentRange* CategoryExtents::Find(world::Category category) const {
+  const int id = world::CategoryId(category);
+  if (id < 0 || id >= world::kNumObjectCategories) return nullptr;
+  const ExtentRange& r = ranges_[static_cast<std::size_t>(id)];
+  return r.num_models > 0 ? &r : nullptr;
+}
+
+CategoryExtents CategoryExtents::FromDatabase(const ModelDatabase& database) {
+  CategoryExtents out;
+  for (const DatabaseModel& model : database.models()) {
+    if (model.full_entry < 0 || model.full_entry >= static_cast<std::int32_t>(database.entries().size())) continue;
+    out.Add(model.category, MeasureExtent(database.entries()[static_cast<std::size_t>(model.full_entry)].points));
+  }
+  return out;
+}
+
+void SizePlausibilityOptions::Validate() const {
+  config::RequireInRange("scanner.size_check.min_ratio", min_ratio, 0.0, 1.0);
+  config::RequirePositive("scanner.size_check.adjacency_m", adjacency_m);
+  config::Require(max_ratio >= 1.0 && std::isfinite(max_ratio), "scanner.size_check.max_ratio",
+                  "must be a finite number >= 1 (got " + std::to_string(max_ratio) + ")");
+}
+
+bool IsPlausibleExtent(const ObjectExtent& extent, const ExtentRange* range, const SizePlausibilityOptions& options) {
+  if (!options.enabled || range == nullptr) return true;
+  const auto within = [&](double value, double lo, double hi) {
+    return value >= options.min_ratio * lo && value <= options.max_ratio * hi;
+  };
+  return within(extent.height_m, range->min.height_m, range->max.height_m) &&
+         within(extent.footprint_diagonal_m, range->min.footprint_diagonal_m, range->max.footprint_diagonal_m);
+}
+
+}  // namespace objscan::recognition

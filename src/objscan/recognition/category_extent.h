@@ -1,0 +1,81 @@
+#pragma once
+// Beyond the paper: how big the objects of each category are, from the database's full models, and
+// whether a reconstructed object could be one of them. The paper's objectness is normalised by the
+// query's own diagonal, so a 30 cm piece of a dresser can fit a bed model's corner as well as a whole
+// bed fits a bed; once scanning ends, a "bed" that small (or a "cabinet" spanning a whole wall) is
+// not one. Extents are yaw-invariant: the height and the diagonal of the smallest horizontal
+// bounding rectangle.
+#include <array>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "objscan/common/config.h"
+#include "objscan/world/category.h"
+
+namespace objscan::recognition {
+
+class ModelDatabase;
+
+struct ObjectExtent {
+  double height_m = 0.0;              // vertical size of the points' bounding box
+  double footprint_diagonal_m = 0.0;  // diagonal of the smallest bounding rectangle over yaw
+};
+
+// The extent of a point set (Z up); zeros when empty. The rectangle is searched over yaw in steps
+// of 90° / yaw_steps, so its diagonal overestimates the smallest one's by at most a factor
+// sqrt(1 + sin(90° / yaw_steps)) (1.05 for 16 steps).
+ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_steps = 16);
+
+struct ExtentRange {
+  ObjectExtent min;  // component-wise over the category's models
+  ObjectExtent max;
+  int num_models = 0;
+};
+
+// Per-category extents of the database's full models.
+class CategoryExtents {
+ public:
+  CategoryExtents() = default;
+  static CategoryExtents FromDatabase(const ModelDatabase& database);
+  void Add(world::Category category, const ObjectExtent& extent);
+  // Null when the database has no model of the category.
+  const ExtentRange* Find(world::Category category) const;
+
+ private:
+  std::array<ExtentRange, world::kNumObjectCategories> ranges_{};
+};
+
+struct SizePlausibilityOptions {
+  // false = every recognized object keeps its label, whatever its size (the paper).
+  bool enabled = true;
+  // An object is a plausible member of a category when its height and footprint diagonal both lie in
+  // [min_ratio * smallest model's, max_ratio * largest model's]. Below: a fragment; above: several
+  // objects (or a wall) taken for one.
+  double min_ratio = 0.6;
+  double max_ratio = 1.4;
+  // An implausible object takes the best-fitting plausible category among its full-model matches;
+  // false (or none plausible) = it is reported unrecognized.
+  bool relabel = false;
+  // Before the check, pieces too small for their label join an adjacent object whose category the
+  // union fits (scanning/size_regrouping.h).
+  bool regroup = true;
+  double adjacency_m = 0.05;  // pieces with points this close are adjacent for the regrouping
+
+  template <class V>
+  void Visit(V& v) {
+    v("enabled", enabled);
+    v("min_ratio", min_ratio);
+    v("max_ratio", max_ratio);
+    v("relabel", relabel);
+    v("regroup", regroup);
+    v("adjacency_m", adjacency_m);
+  }
+  void Validate() const;
+};
+
+// True when `extent` fits `range` under `options` (always true when disabled or when range is null).
+bool IsPlausibleExtent(const ObjectExtent& extent, const ExtentRange* range, const SizePlausibilityOptions& options);
+
+}  // namespace objscan::recognition

@@ -1,0 +1,141 @@
+#include "objscan/scanning/size_regrouping.h"
+
+#include <algorithm>
+#include <set>
+#include <unordered_map>
+
+#include "objscan/geometry/voxel_key.h"
+
+namespace objscan::scanning {
+
+RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& objects,
+                                          const std::vector<std::pair<int, int>>& adjacency,
+                                          const recognition::CategoryExtents& extents,
+                                          const recognition::SizePlausibilityOptions& options,
+                                          const RecognizeUnion& recognize) {
+  const int n = static_cast<int>(objects.size());
+  RegroupResult out;
+  out.host.resize(static_cast<std::size_t>(n));
+  out.category.resize(static_cast<std::size_t>(n));
+  std::vector<std::vector<Eigen::Vector3f>> points(static_cast<std::size_t>(n));
+  std::vector<std::set<int>> neighbors(static_cast<std::size_t>(n));
+  std::vector<std::vector<int>> members(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) members[static_cast<std::size_t>(i)] = {i};
+  for (int i = 0; i < n; ++i) {
+    out.host[static_cast<std::size_t>(i)] = i;
+    out.category[static_cast<std::size_t>(i)] = objects[static_cast<std::size_t>(i)].category;
+    points[static_cast<std::size_t>(i)] = objects[static_cast<std::size_t>(i)].points_world;
+  }
+  if (!options.enabled) return out;
+  for (const auto& [a, b] : adjacency) {
+    if (a == b || a < 0 || b < 0 || a >= n || b >= n) continue;
+    neighbors[static_cast<std::size_t>(a)].insert(b);
+    neighbors[static_cast<std::size_t>(b)].insert(a);
+  }
+  const auto fits = [&](const recognition::ObjectExtent& e, world::Category c) {
+    return recognition::IsPlausibleExtent(e, extents.Find(c), options);
+  };
+  const auto movable = [&](int i) {
+    return out.host[static_cast<std::size_t>(i)] == i && !objects[static_cast<std::size_t>(i)].fixed &&
+           out.category[static_cast<std::size_t>(i)].has_value();
+  };
+  std::vector<recognition::ObjectExtent> extent(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) extent[static_cast<std::size_t>(i)] = recognition::MeasureExtent(points[static_cast<std::size_t>(i)]);
+  std::set<int> tried_and_stayed;  // implausible objects no neighbour takes (until something changes)
+  while (true) {
+    // The smallest implausible object not yet known to stay.
+    int piece = -1;
+    for (int i = 0; i < n; ++i) {
+      if (!movable(i) || tried_and_stayed.count(i) || fits(extent[static_cast<std::size_t>(i)], *out.category[static_cast<std::size_t>(i)])) continue;
+      if (piece < 0 || points[static_cast<std::size_t>(i)].size() < points[static_cast<std::size_t>(piece)].size()) piece = i;
+    }
+    if (piece < 0) break;
+    int best_host = -1;
+    world::Category best_category = world::Category::kOther;
+    recognition::ObjectExtent best_extent;
+    for (int h : neighbors[static_cast<std::size_t>(piece)]) {
+      if (!movable(h)) continue;
+      std::vector<Eigen::Vector3f> joined = points[static_cast<std::size_t>(h)];
+      joined.insert(joined.end(), points[static_cast<std::size_t>(piece)].begin(), points[static_cast<std::size_t>(piece)].end());
+      const recognition::ObjectExtent e = recognition::MeasureExtent(joined);
+      const world::Category host_category = *out.category[static_cast<std::size_t>(h)];
+      const world::Category piece_category = *out.category[static_cast<std::size_t>(piece)];
+      const bool host_plausible = fits(extent[static_cast<std::size_t>(h)], host_category);
+      std::optional<world::Category> category;
+      if (fits(e, host_category)) {
+        category = host_category;
+      } else if (!host_plausible) {
+        std::vector<world::Category> options_in_order = {piece_category};
+        if (recognize) {
+          std::vector<int> joined_members = members[static_cast<std::size_t>(h)];
+          joined_members.insert(joined_members.end(), members[static_cast<std::size_t>(piece)].begin(),
+                                members[static_cast<std::size_t>(piece)].end());
+          std::sort(joined_members.begin(), joined_members.end());
+          options_in_order = recognize(joined_members);
+        }
+        for (world::Category c : options_in_order) {
+          if (fits(e, c)) {
+            category = c;
+            break;
+          }
+        }
+      }
+      if (!category) continue;
+      if (best_host < 0 || points[static_cast<std::size_t>(h)].size() > points[static_cast<std::size_t>(best_host)].size()) {
+        best_host = h;
+        best_category = *category;
+        best_extent = e;
+      }
+    }
+    if (best_host < 0) {
+      tried_and_stayed.insert(piece);
+      continue;
+    }
+    auto& into = points[static_cast<std::size_t>(best_host)];
+    into.insert(into.end(), points[static_cast<std::size_t>(piece)].begin(), points[static_cast<std::size_t>(piece)].end());
+    extent[static_cast<std::size_t>(best_host)] = best_extent;
+    out.category[static_cast<std::size_t>(best_host)] = best_category;
+    auto& merged_members = members[static_cast<std::size_t>(best_host)];
+    merged_members.insert(merged_members.end(), members[static_cast<std::size_t>(piece)].begin(),
+                          members[static_cast<std::size_t>(piece)].end());
+    for (int k : neighbors[static_cast<std::size_t>(piece)]) {
+      if (k == best_host) continue;
+      neighbors[static_cast<std::size_t>(best_host)].insert(k);
+      neighbors[static_cast<std::size_t>(k)].insert(best_host);
+    }
+    for (int i = 0; i < n; ++i) {
+      if (out.host[static_cast<std::size_t>(i)] == piece) out.host[static_cast<std::size_t>(i)] = best_host;
+    }
+    ++out.merges;
+    tried_and_stayed.clear();  // the host grew: pieces that stayed may fit now
+  }
+  return out;
+}
+
+std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
+                                                       double distance_m) {
+  const float inv = static_cast<float>(1.0 / std::max(1e-6, distance_m));
+  // Each cell lists the objects with a point in it, ascending, once.
+  std::unordered_map<geometry::VoxelKey, std::vector<int>, geometry::VoxelKeyHash> cells;
+  for (int i = 0; i < static_cast<int>(points_world.size()); ++i) {
+    for (const auto& p : points_world[static_cast<std::size_t>(i)]) {
+      auto& list = cells[geometry::KeyOf(p, inv)];
+      if (list.empty() || list.back() != i) list.push_back(i);
+    }
+  }
+  std::set<std::pair<int, int>> pairs;
+  for (const auto& [key, here] : cells) {
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          auto it = cells.find(geometry::VoxelKey{key.x + dx, key.y + dy, key.z + dz});
+          if (it == cells.end()) continue;
+          for (int a : here)
+            for (int b : it->second)
+              if (a < b) pairs.emplace(a, b);
+        }
+  }
+  return {pairs.begin(), pairs.end()};
+}
+
+}  // namespace objscan::scanning

@@ -1,0 +1,48 @@
+#pragma once
+// Beyond the paper: pieces too small for their label join a neighbour. At the end of a run an object
+// may still be in pieces (a night stand's drawer fronts, a lamp's shade apart from its stem), each
+// recognized on its own as something it is too small to be. When joining a piece to an adjacent
+// object gives an object whose size a model of that object's category has, the piece is part of it;
+// two pieces that are both too small for their labels may together make one of them.
+#include <functional>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "objscan/recognition/category_extent.h"
+#include "objscan/world/category.h"
+
+namespace objscan::scanning {
+
+struct RegroupCandidate {
+  std::vector<Eigen::Vector3f> points_world;
+  std::optional<world::Category> category;  // nullopt: unrecognized (never a host, never moves)
+  bool fixed = false;                       // replaced by its model: never moves, never a host
+};
+
+struct RegroupResult {
+  std::vector<int> host;                                // per object: the object it joined (itself if none)
+  std::vector<std::optional<world::Category>> category; // per object: its category after regrouping
+  int merges = 0;
+};
+
+// Greedy and deterministic: repeatedly, the smallest object implausible for its category joins the
+// adjacent object (`adjacency`: index pairs) with the most points among those whose union is
+// plausible for the host's category, or, when the host is implausible too, for the first category
+// of `recognize(members)` (the union's recognized categories, best first; members are indices into
+// `objects`) that it fits. Without `recognize`, the piece's own label is the only other choice.
+using RecognizeUnion = std::function<std::vector<world::Category>(const std::vector<int>& members)>;
+RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& objects,
+                                          const std::vector<std::pair<int, int>>& adjacency,
+                                          const recognition::CategoryExtents& extents,
+                                          const recognition::SizePlausibilityOptions& options,
+                                          const RecognizeUnion& recognize = nullptr);
+
+// Index pairs (i < j) of objects with points within about `distance_m` of each other (points in the
+// same or neighbouring cells of a grid of that size).
+std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
+                                                       double distance_m);
+
+}  // namespace objscan::scanning

@@ -1,0 +1,122 @@
+#include "objscan/scanning/size_regrouping.h"
+
+#include <gtest/gtest.h>
+
+#include "objscan/recognition/test_shapes.h"
+
+namespace objscan::scanning {
+namespace {
+
+using world::Category;
+
+std::vector<Eigen::Vector3f> Box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  std::vector<Eigen::Vector3f> points, normals;
+  recognition::testing::BoxSurface(lo, hi, 0.02, &points, &normals);
+  return points;
+}
+
+// Night stands 0.5 m tall with a 0.6-0.7 m footprint diagonal; beds 0.6 m tall, 2.2-2.6 m.
+recognition::CategoryExtents Extents() {
+  recognition::CategoryExtents extents;
+  extents.Add(Category::kNightStand, {0.5, 0.6});
+  extents.Add(Category::kNightStand, {0.5, 0.7});
+  extents.Add(Category::kBed, {0.6, 2.2});
+  extents.Add(Category::kBed, {0.6, 2.6});
+  return extents;
+}
+
+recognition::SizePlausibilityOptions Options() {
+  recognition::SizePlausibilityOptions options;
+  options.min_ratio = 0.8;
+  options.max_ratio = 1.2;
+  return options;
+}
+
+TEST(RegroupTest, APieceTooSmallForItsLabelJoinsTheNeighbourItCompletes) {
+  // A night stand (0.4 x 0.45 x 0.5 m, diagonal 0.6 m) in two pieces: its body, labelled night
+  // stand, and its 0.1 m top slab, labelled bed. A bed stands apart.
+  std::vector<RegroupCandidate> objects(3);
+  objects[0].points_world = Box({0, 0, 0}, {0.4, 0.45, 0.35});
+  objects[0].category = Category::kNightStand;  // 0.35 m tall alone: implausible too (< 0.8 * 0.5)
+  objects[1].points_world = Box({0, 0, 0.35}, {0.4, 0.45, 0.5});
+  objects[1].category = Category::kBed;
+  objects[2].points_world = Box({1, 0, 0}, {3, 1.2, 0.6});
+  objects[2].category = Category::kBed;
+  const std::vector<std::pair<int, int>> adjacency = {{0, 1}, {1, 2}};
+  const RegroupResult r = RegroupImplausibleFragments(objects, adjacency, Extents(), Options());
+  // The slab is the smallest implausible object; joined to the bed, the union is no bed (too wide),
+  // so it joins the night-stand body, and the union (0.5 m tall) is a night stand.
+  EXPECT_EQ(r.merges, 1);
+  EXPECT_EQ(r.host, (std::vector<int>{0, 0, 2}));
+  ASSERT_TRUE(r.category[0].has_value());
+  EXPECT_EQ(*r.category[0], Category::kNightStand);
+  EXPECT_EQ(*r.category[2], Category::kBed);
+}
+
+TEST(RegroupTest, AUnionOfTwoImplausiblePiecesTakesTheRecognizedCategoryItFits) {
+  // Both halves of a night stand are labelled bed; recognition of the union says bed first (which
+  // it does not fit), then night stand.
+  std::vector<RegroupCandidate> objects(2);
+  objects[0].points_world = Box({0, 0, 0}, {0.4, 0.45, 0.25});
+  objects[0].category = Category::kBed;
+  objects[1].points_world = Box({0, 0, 0.25}, {0.4, 0.45, 0.5});
+  objects[1].category = Category::kBed;
+  std::vector<std::vector<int>> asked;
+  const auto recognize = [&](const std::vector<int>& members) {
+    asked.push_back(members);
+    return std::vector<Category>{Category::kBed, Category::kNightStand};
+  };
+  const RegroupResult r = RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), Options(), recognize);
+  EXPECT_EQ(r.merges, 1);
+  EXPECT_EQ(r.host[0], r.host[1]);
+  const int kept = r.host[0];
+  ASSERT_TRUE(r.category[static_cast<std::size_t>(kept)].has_value());
+  EXPECT_EQ(*r.category[static_cast<std::size_t>(kept)], Category::kNightStand);
+  ASSERT_FALSE(asked.empty());
+  EXPECT_EQ(asked.front(), (std::vector<int>{0, 1}));
+  // Without recognition, only the labels are candidates and bed does not fit: both stay.
+  const RegroupResult alone = RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), Options());
+  EXPECT_EQ(alone.merges, 0);
+  EXPECT_EQ(alone.host, (std::vector<int>{0, 1}));
+}
+
+TEST(RegroupTest, PlausibleFixedUnrecognizedAndApartObjectsStay) {
+  std::vector<RegroupCandidate> objects(4);
+  objects[0].points_world = Box({0, 0, 0}, {0.4, 0.45, 0.5});  // a whole night stand
+  objects[0].category = Category::kNightStand;
+  objects[1].points_world = Box({0, 0, 0.5}, {0.4, 0.45, 0.6});  // a slab labelled bed ...
+  objects[1].category = Category::kBed;
+  objects[2].points_world = Box({0.4, 0, 0}, {0.5, 0.45, 0.5});  // unrecognized
+  objects[3].points_world = Box({5, 5, 0}, {5.4, 5.45, 0.1});    // a slab far away, adjacent to nothing
+  objects[3].category = Category::kBed;
+  // The slab and the night stand together are 0.6 m tall: no night stand under a 1.1 ratio (0.55 m).
+  recognition::SizePlausibilityOptions options = Options();
+  options.max_ratio = 1.1;
+  const RegroupResult r = RegroupImplausibleFragments(objects, {{0, 1}, {0, 2}, {1, 2}}, Extents(), options);
+  EXPECT_EQ(r.merges, 0);
+  EXPECT_EQ(r.host, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_FALSE(r.category[2].has_value());
+  // Under 1.3 (0.65 m) the slab joins the night stand, unless it is fixed (completed): then it never
+  // hosts.
+  objects[0].fixed = true;
+  options.max_ratio = 1.3;
+  EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), options).merges, 0);
+  objects[0].fixed = false;
+  EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), options).merges, 1);
+  // Disabled: nothing moves.
+  options.enabled = false;
+  EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), options).merges, 0);
+}
+
+TEST(ObjectsWithinDistanceTest, PairsOfObjectsWithClosePoints) {
+  const std::vector<std::vector<Eigen::Vector3f>> points = {
+      {{0.f, 0.f, 0.f}, {0.2f, 0.f, 0.f}},
+      {{0.23f, 0.f, 0.f}},   // 3 cm from object 0
+      {{1.0f, 0.f, 0.f}},    // far from both
+      {{0.21f, 0.01f, 0.f}}};
+  const auto pairs = ObjectsWithinDistance(points, 0.05);
+  EXPECT_EQ(pairs, (std::vector<std::pair<int, int>>{{0, 1}, {0, 3}, {1, 3}}));
+}
+
+}  // namespace
+}  // namespace objscan::scanning
