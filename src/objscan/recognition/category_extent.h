@@ -53,7 +53,7 @@ struct SizePlausibilityOptions {
   // An object is a plausible member of a category when its height and footprint diagonal both lie in
   // [min_ratio * smallest model's, max_ratio * largest model's]. Below: a fragment; above: several
   // objects (or a wall) taken for one.
-  double min_ratio = 0.6;
+  double min_ratio = 0.5;
   double max_ratio = 1.4;
   // An implausible object takes the best-fitting plausible category among its full-model matches;
   // false (or none plausible) = it is reported unrecognized.
