@@ -18,8 +18,8 @@
 #include "objscan/planning/next_best_view.h"
 #include "objscan/recognition/recognizer.h"
 #include "objscan/recognition/component_matcher.h"
-#include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/scanning/size_regrouping.h"
+#include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/sim/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
@@ -199,7 +199,6 @@ struct Scanner::State {
         recognizer(db, c.recognition),
         matcher(recognizer, c.scanner.threads),
         post_segmenter(c.postsegmentation, &matcher),
-        category_extents(recognition::CategoryExtents::FromDatabase(db)),
         nbv(c.nbv),
         robot(c.robot, ChooseStart(s, c.robot, c.navigation)),
         visited(1, robot.base().xy_m),
@@ -656,7 +655,6 @@ struct Scanner::State {
   recognition::RecognizerComponentMatcher matcher;
   std::unique_ptr<MapSpaceEvidence> space_evidence;  // rebuilt at every analysis
   segmentation::PostSegmenter post_segmenter;
-  const recognition::CategoryExtents category_extents;  // of the database's models, for the size check
   planning::NextBestView nbv;
   planning::CameraFrustum frustum;
   sim::Robot robot;
@@ -868,34 +866,37 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     auto& into = object_points[static_cast<std::size_t>(host[i])];
     into.insert(into.end(), candidates[i].points_world.begin(), candidates[i].points_world.end());
   }
-  if (s.config.scanner.size_check.enabled && s.config.scanner.size_check.regroup) {
+  const recognition::SizePlausibilityOptions& size_check = s.config.scanner.size_check;
+  // Measured here, not at start-up: only the end of a run needs the models' sizes.
+  const recognition::CategoryExtents category_extents =
+      size_check.enabled ? recognition::CategoryExtents::FromDatabase(s.database) : recognition::CategoryExtents();
+  if (size_check.enabled && size_check.regroup) {
+    // Absorbed objects hold no points in object_points (they host nothing), so they touch nothing.
+    const std::vector<std::pair<int, int>> adjacency = ObjectsWithinDistance(object_points, size_check.adjacency_m);
     std::vector<RegroupCandidate> pieces(host.size());
     for (std::size_t i = 0; i < host.size(); ++i) {
       if (host[i] != static_cast<int>(i)) continue;
-      pieces[i].points_world = object_points[i];
+      pieces[i].points_world = std::move(object_points[i]);
       pieces[i].category = rec.objects[i].complete ? std::nullopt : rec.objects[i].category;
       pieces[i].fixed = rec.objects[i].complete;
     }
-    std::vector<std::vector<Eigen::Vector3f>> piece_points(host.size());
-    for (std::size_t i = 0; i < host.size(); ++i) piece_points[i] = pieces[i].points_world;
-    const std::vector<std::pair<int, int>> adjacency =
-        ObjectsWithinDistance(piece_points, s.config.scanner.size_check.adjacency_m);
-    const RegroupResult regroup =
-        RegroupImplausibleFragments(pieces, adjacency, s.category_extents, s.config.scanner.size_check,
-                                    [&](const std::vector<int>& members) {
-                                      std::vector<std::int32_t> labels;
-                                      for (int m : members) {
-                                        const auto& l = rec.objects[static_cast<std::size_t>(m)].labels;
-                                        labels.insert(labels.end(), l.begin(), l.end());
-                                      }
-                                      std::sort(labels.begin(), labels.end());
-                                      labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-                                      std::vector<world::Category> categories;
-                                      for (const auto& m : s.matcher.Match(labels, segmentation::MatchScope::kFullModels).models) {
-                                        categories.push_back(m.category);
-                                      }
-                                      return categories;
-                                    });
+    // The categories a union of objects is recognized as, best first.
+    const auto recognize = [&](const std::vector<int>& members) {
+      std::vector<std::int32_t> labels;
+      for (int m : members) {
+        const auto& l = rec.objects[static_cast<std::size_t>(m)].labels;
+        labels.insert(labels.end(), l.begin(), l.end());
+      }
+      std::sort(labels.begin(), labels.end());
+      labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+      std::vector<world::Category> categories;
+      for (const auto& m : s.matcher.Match(labels, segmentation::MatchScope::kFullModels).models) {
+        categories.push_back(m.category);
+      }
+      return categories;
+    };
+    RegroupResult regroup = RegroupImplausibleFragments(pieces, adjacency, category_extents, size_check, recognize);
+    object_points = std::move(regroup.points_world);
     for (std::size_t i = 0; i < host.size(); ++i) {
       if (host[i] != static_cast<int>(i)) continue;
       const int into = regroup.host[i];
@@ -906,25 +907,20 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       auto& labels = rec.objects[static_cast<std::size_t>(into)].labels;
       labels.insert(labels.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
       std::sort(labels.begin(), labels.end());
-      auto& pts = object_points[static_cast<std::size_t>(into)];
-      pts.insert(pts.end(), object_points[i].begin(), object_points[i].end());
-      object_points[i].clear();
-    }
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      if (host[i] == static_cast<int>(i) && regroup.host[i] != static_cast<int>(i)) host[i] = regroup.host[i];
+      host[i] = into;
     }
   }
   for (std::size_t i = 0; i < host.size(); ++i) {
     ObjectRecord& o = rec.objects[i];
-    if (host[i] != static_cast<int>(i) || o.complete || !o.category || !s.config.scanner.size_check.enabled) continue;
+    if (host[i] != static_cast<int>(i) || o.complete || !o.category || !size_check.enabled) continue;
     const recognition::ObjectExtent extent = recognition::MeasureExtent(object_points[i]);
     const auto plausible = [&](world::Category c) {
-      return recognition::IsPlausibleExtent(extent, s.category_extents.Find(c), s.config.scanner.size_check);
+      return recognition::IsPlausibleExtent(extent, category_extents.Find(c), size_check);
     };
     if (plausible(*o.category)) continue;
     o.size_rejected_category = o.category;
     o.category.reset();
-    if (!s.config.scanner.size_check.relabel || full_matches[i] == nullptr) continue;
+    if (!size_check.relabel || full_matches[i] == nullptr) continue;
     const segmentation::ModelMatch* best = nullptr;
     for (const auto& m : full_matches[i]->models) {
       if (plausible(m.category) && (best == nullptr || m.objectness > best->objectness)) best = &m;

@@ -17,7 +17,8 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
   RegroupResult out;
   out.host.resize(static_cast<std::size_t>(n));
   out.category.resize(static_cast<std::size_t>(n));
-  std::vector<std::vector<Eigen::Vector3f>> points(static_cast<std::size_t>(n));
+  std::vector<std::vector<Eigen::Vector3f>>& points = out.points_world;
+  points.resize(static_cast<std::size_t>(n));
   std::vector<std::set<int>> neighbors(static_cast<std::size_t>(n));
   std::vector<std::vector<int>> members(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) members[static_cast<std::size_t>(i)] = {i};
@@ -93,6 +94,7 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
     }
     auto& into = points[static_cast<std::size_t>(best_host)];
     into.insert(into.end(), points[static_cast<std::size_t>(piece)].begin(), points[static_cast<std::size_t>(piece)].end());
+    points[static_cast<std::size_t>(piece)] = {};
     extent[static_cast<std::size_t>(best_host)] = best_extent;
     out.category[static_cast<std::size_t>(best_host)] = best_category;
     auto& merged_members = members[static_cast<std::size_t>(best_host)];

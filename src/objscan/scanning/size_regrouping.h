@@ -25,6 +25,8 @@ struct RegroupCandidate {
 struct RegroupResult {
   std::vector<int> host;                                // per object: the object it joined (itself if none)
   std::vector<std::optional<world::Category>> category; // per object: its category after regrouping
+  // Per object: its points with those of the pieces that joined it (empty for an object that joined).
+  std::vector<std::vector<Eigen::Vector3f>> points_world;
   int merges = 0;
 };
 

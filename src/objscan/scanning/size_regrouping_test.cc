@@ -51,6 +51,10 @@ TEST(RegroupTest, APieceTooSmallForItsLabelJoinsTheNeighbourItCompletes) {
   ASSERT_TRUE(r.category[0].has_value());
   EXPECT_EQ(*r.category[0], Category::kNightStand);
   EXPECT_EQ(*r.category[2], Category::kBed);
+  // The night stand now holds the slab's points; the slab holds none.
+  EXPECT_EQ(r.points_world[0].size(), objects[0].points_world.size() + objects[1].points_world.size());
+  EXPECT_TRUE(r.points_world[1].empty());
+  EXPECT_EQ(r.points_world[2].size(), objects[2].points_world.size());
 }
 
 TEST(RegroupTest, AUnionOfTwoImplausiblePiecesTakesTheRecognizedCategoryItFits) {
