@@ -17,6 +17,9 @@ void IncrementalSegmenterOptions::Validate() const {
   config::RequireInRange("merge_min_frames", merge_min_frames, 1, 1000);
   config::RequirePositive("vote_weight", vote_weight);
   config::RequireInRange("min_component_elements", min_component_elements, 1, 1 << 24);
+  // At most half a 16-voxel block: the neighbouring cells of a dirty block's cells stay inside the
+  // blocks around it.
+  config::RequireInRange("adjacency_cell_voxels", adjacency_cell_voxels, 1, 8);
   config::RequirePositive("floor_prior_tolerance_m", floor_prior_tolerance_m);
   config::RequireInRange("floor_prior_max_tilt_deg", floor_prior_max_tilt_deg, 0.0, 90.0);
 }
@@ -165,7 +168,7 @@ SegmenterUpdateStats IncrementalSegmenter::Update(const sim::DepthFrame& frame,
 
 namespace {
 
-std::int32_t FloorDiv2(std::int32_t x) { return x >= 0 ? x / 2 : -((-x + 1) / 2); }
+std::int32_t FloorDiv(std::int32_t x, std::int32_t n) { return x >= 0 ? x / n : -((-x + n - 1) / n); }
 
 std::uint64_t PackCell(std::int32_t x, std::int32_t y, std::int32_t z) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x) & 0x1FFFFF) << 42) |
@@ -211,10 +214,10 @@ const ComponentGraph& IncrementalSegmenter::Components(mapping::SurfaceMap* map)
   std::sort(components.begin(), components.end(),
             [](const Component& a, const Component& b) { return a.label < b.label; });
 
-  // Adjacency over 2-voxel cells: labels in the same or 26-neighbouring cells touch. An edge between
-  // two unchanged components cannot have changed (their elements did not), so it is kept from the
-  // last call; cells are indexed only inside blocks (8 x 8 x 8 cells) that hold an element of a changed
-  // label or neighbour such a block, which is where every other edge lies.
+  // Adjacency over cells of adjacency_cell_voxels: labels in the same or 26-neighbouring cells touch.
+  // An edge between two unchanged components cannot have changed (their elements did not), so it is
+  // kept from the last call; cells are indexed only inside blocks (16 voxels a side) that hold an
+  // element of a changed label or neighbour such a block, which is where every other edge lies.
   std::vector<std::uint8_t> present(static_cast<std::size_t>(max_label) + 1, 0);
   for (const Component& c : components) present[c.label] = 1;
   std::unordered_set<std::uint64_t> edges;
@@ -281,7 +284,8 @@ const ComponentGraph& IncrementalSegmenter::Components(mapping::SurfaceMap* map)
       if (l <= 0 || !present[l] || map->structure(i) != mapping::Structure::kNone) continue;
       const geometry::VoxelKey& k = map->key(i);
       if (!marked[block_of(k)]) continue;
-      const geometry::VoxelKey ck{FloorDiv2(k.x), FloorDiv2(k.y), FloorDiv2(k.z)};
+      const std::int32_t n = options_.adjacency_cell_voxels;
+      const geometry::VoxelKey ck{FloorDiv(k.x, n), FloorDiv(k.y, n), FloorDiv(k.z, n)};
       auto [it, inserted] = cell_index.emplace(PackCell(ck.x, ck.y, ck.z), static_cast<std::uint32_t>(cell_key.size()));
       if (inserted) {
         cell_key.push_back(ck);

@@ -36,6 +36,10 @@ struct IncrementalSegmenterOptions {
   double vote_weight = 1.0;
   // Components with fewer elements are left out of C (noise).
   int min_component_elements = 20;
+  // Adjacency of C: labels with elements in the same or 26-neighbouring cells of this many map
+  // voxels per side touch (2: elements within about 2-4 voxels). Beyond the paper, larger cells also
+  // join parts a few centimetres apart (a pillow above a mattress, a drawer front behind its gap).
+  int adjacency_cell_voxels = 2;
   // Structure never shares a frame segment with objects: pixels fused into elements the map tags
   // as floor or wall (mapping::StructureDetector) are segmented apart, and so are pixels of the
   // floor prior (the robot stands on z = floor_prior_height_m) before the detector has run: world
@@ -58,6 +62,7 @@ struct IncrementalSegmenterOptions {
     v("merge_min_frames", merge_min_frames);
     v("vote_weight", vote_weight);
     v("min_component_elements", min_component_elements);
+    v("adjacency_cell_voxels", adjacency_cell_voxels);
     v("separate_structure", separate_structure);
     v("floor_prior", floor_prior);
     v("floor_prior_height_m", floor_prior_height_m);
@@ -83,8 +88,8 @@ class IncrementalSegmenter {
   SegmenterUpdateStats Update(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
                               mapping::SurfaceMap* map);
 
-  // Components C and their adjacency (elements of two labels within about two voxels: 2-voxel
-  // cells, 26-neighbourhood). Recomputes the labels the map reports dirty since the last call.
+  // Components C and their adjacency (elements of two labels in the same or neighbouring cells of
+  // adjacency_cell_voxels voxels, 26-neighbourhood). Recomputes the labels the map reports dirty since the last call.
   const ComponentGraph& Components(mapping::SurfaceMap* map);
   // Labels whose component changed (or vanished) in the last Components() call, ascending.
   const std::vector<std::int32_t>& changed_labels() const { return changed_labels_; }

@@ -106,6 +106,29 @@ TEST(IncrementalSegmenterTest, BoxStandingOnABoxGivesTwoAdjacentComponents) {
   EXPECT_GE(q.rand_index_preseg, 0.9);
 }
 
+// Two boxes 12 cm apart: not adjacent with the default 2-voxel cells, adjacent with 8-voxel cells
+// (elements about 12 voxels apart across the gap fall in neighbouring cells).
+TEST(IncrementalSegmenterTest, AdjacencyCellSizeJoinsPartsAcrossASmallGap) {
+  AnalyticWorld world;
+  world.Add(Eigen::Vector3d(-0.5, -0.3, 0.0), Eigen::Vector3d(-0.06, 0.3, 0.45), 1);
+  world.Add(Eigen::Vector3d(0.06, -0.3, 0.0), Eigen::Vector3d(0.5, 0.3, 0.45), 2);
+  for (const int cell_voxels : {2, 8}) {
+    Scanned s;
+    IncrementalSegmenterOptions options;
+    options.adjacency_cell_voxels = cell_voxels;
+    s.segmenter = IncrementalSegmenter(options);
+    Scan(world, Ring(Eigen::Vector3d(0, 0, 0.3), 1.6, 1.0, 8), 13, &s);
+    const auto per_instance = LabelsPerInstance(s.map);
+    const std::int32_t left = MajorityLabel(per_instance.at(1)).first;
+    const std::int32_t right = MajorityLabel(per_instance.at(2)).first;
+    ASSERT_NE(left, right);
+    const ComponentGraph& graph = s.segmenter.Components(&s.map);
+    ASSERT_NE(graph.Find(left), nullptr);
+    ASSERT_NE(graph.Find(right), nullptr);
+    EXPECT_EQ(graph.Adjacent(left, right), cell_voxels == 8) << cell_voxels << "-voxel cells";
+  }
+}
+
 TEST(IncrementalSegmenterTest, ChairIsSplitIntoNearConvexParts) {
   // Seat (1), back (2), four legs (3..6), floor (10).
   AnalyticWorld world;
@@ -277,7 +300,9 @@ TEST(IncrementalSegmenterTest, ComponentsTrackChangesIncrementally) {
 // adjacency computed from scratch. The scanned surface is relabelled by 7 cm cubes (so labels touch
 // across the segmenter's 16-voxel blocks), then random cubes change label a few at a time, leaving
 // most components unchanged between calls.
-TEST(IncrementalSegmenterTest, IncrementalAdjacencyEqualsRecomputingIt) {
+class IncrementalAdjacencyTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(IncrementalAdjacencyTest, EqualsRecomputingIt) {
   AnalyticWorld world;
   world.Add(Eigen::Vector3d(-0.4, -0.3, 0.0), Eigen::Vector3d(0.4, 0.3, 0.45), 1);
   world.Add(Eigen::Vector3d(-0.2, -0.15, 0.45), Eigen::Vector3d(0.2, 0.15, 0.8), 2);
@@ -297,6 +322,7 @@ TEST(IncrementalSegmenterTest, IncrementalAdjacencyEqualsRecomputingIt) {
   ASSERT_GT(label_of_cube.size(), 50u);
   IncrementalSegmenterOptions options;
   options.min_component_elements = 5;
+  options.adjacency_cell_voxels = GetParam();
   IncrementalSegmenter incremental(options);
   Rng rng(7);
   std::int32_t next_label = static_cast<std::int32_t>(label_of_cube.size()) + 1;
@@ -336,6 +362,9 @@ TEST(IncrementalSegmenterTest, IncrementalAdjacencyEqualsRecomputingIt) {
   EXPECT_GT(max_edges, 50u);
   EXPECT_GE(changed_rounds, 8u);
 }
+
+// Cell sizes: the default, one that does not divide the 16-voxel blocks, and the largest allowed.
+INSTANTIATE_TEST_SUITE_P(CellVoxels, IncrementalAdjacencyTest, ::testing::Values(2, 3, 8));
 
 }  // namespace
 }  // namespace objscan::segmentation
