@@ -1,6 +1,7 @@
 // `objscan run`: scan a scene autonomously and write the DESIGN.md output folder.
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "objscan/common/config.h"
 #include "objscan/common/error.h"
 #include "objscan/eval/run_evaluation.h"
 #include "objscan/eval/run_output.h"
@@ -46,10 +48,23 @@ std::string CacheDir() {
 
 }  // namespace
 
+// FNV-1a of the build options as YAML: a change of any default (the pre-segmentation's adjacency,
+// say) names a new cache file instead of reusing a database built the old way.
+std::string BuildOptionsKey(const recognition::DatabaseBuildOptions& options) {
+  std::uint64_t hash = 1469598103934665603ull;
+  for (const unsigned char c : config::ToYaml(config::Dump(options))) {
+    hash = (hash ^ c) * 1099511628211ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof(buf), "%08llx", static_cast<unsigned long long>(hash & 0xffffffffull));
+  return buf;
+}
+
 std::string DefaultDatabasePath(bool verbose) {
   namespace fs = std::filesystem;
+  const recognition::DatabaseBuildOptions options;
   const std::string path = CacheDir() + "/procedural-v" + std::to_string(recognition::ModelDatabase::kFormatVersion) +
-                           "-n" + std::to_string(kDefaultDatabaseVariants) + ".db";
+                           "-n" + std::to_string(kDefaultDatabaseVariants) + "-" + BuildOptionsKey(options) + ".db";
   if (fs::exists(path)) return path;
   std::error_code ec;
   fs::create_directories(CacheDir(), ec);
@@ -58,8 +73,7 @@ std::string DefaultDatabasePath(bool verbose) {
     std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n", path.c_str());
   }
   const recognition::ModelDatabase db = recognition::BuildDatabase(
-      recognition::ProceduralModelSources(kDefaultDatabaseVariants), recognition::DatabaseBuildOptions{},
-      TerminalProgress("database"));
+      recognition::ProceduralModelSources(kDefaultDatabaseVariants), options, TerminalProgress("database"));
   FinishProgress();
   db.Save(path);
   return path;

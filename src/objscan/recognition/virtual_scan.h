@@ -27,7 +27,16 @@ struct VirtualScanOptions {
   double distance_margin_m = 0.4;
   sim::SensorOptions sensor;  // the live sensor; `noise` is overridden per use (see below)
   mapping::SurfaceMapOptions map;
-  segmentation::IncrementalSegmenterOptions segmenter;
+  // Clean model scans: adjacent pairs only where parts touch (2-voxel cells). The live system's
+  // 3-voxel cells, used here, add pairs of parts that are apart in the model and cost recognition
+  // (15 procedural rooms: recall 57.1 -> 53.1%, precision 59.4 -> 54.7%).
+  segmentation::IncrementalSegmenterOptions segmenter = TouchingAdjacency();
+
+  static segmentation::IncrementalSegmenterOptions TouchingAdjacency() {
+    segmentation::IncrementalSegmenterOptions options;
+    options.adjacency_cell_voxels = 2;
+    return options;
+  }
 
   template <class V>
   void Visit(V& v) {
