@@ -48,11 +48,14 @@ std::string CacheDir() {
 
 }  // namespace
 
-// FNV-1a of the build options as YAML: a change of any default (the pre-segmentation's adjacency,
-// say) names a new cache file instead of reusing a database built the old way.
+// FNV-1a of the builder revision and the build options as YAML: a changed builder or default (the
+// pre-segmentation's adjacency, say) names a new cache file instead of reusing a database built the
+// old way.
 std::string BuildOptionsKey(const recognition::DatabaseBuildOptions& options) {
   std::uint64_t hash = 1469598103934665603ull;
-  for (const unsigned char c : config::ToYaml(config::Dump(options))) {
+  const std::string key =
+      "builder " + std::to_string(recognition::kDatabaseBuilderRevision) + "\n" + config::ToYaml(config::Dump(options));
+  for (const unsigned char c : key) {
     hash = (hash ^ c) * 1099511628211ull;
   }
   char buf[17];

@@ -17,6 +17,10 @@
 
 namespace objscan::recognition {
 
+// Bump whenever a change to the builder changes the databases it builds (the cached default database
+// of objscan run is named after it and the build options, so a stale cache is never reused).
+constexpr int kDatabaseBuilderRevision = 1;
+
 struct DatabaseBuildOptions {
   VirtualScanOptions scan;
   // Database scans are noise-free: the models are clean and their points should describe the
