@@ -46,8 +46,6 @@ std::string CacheDir() {
   return ".objscan-cache";
 }
 
-}  // namespace
-
 // FNV-1a of the builder revision and the build options as YAML: a changed builder or default (the
 // pre-segmentation's adjacency, say) names a new cache file instead of reusing a database built the
 // old way.
@@ -62,6 +60,8 @@ std::string BuildOptionsKey(const recognition::DatabaseBuildOptions& options) {
   std::snprintf(buf, sizeof(buf), "%08llx", static_cast<unsigned long long>(hash & 0xffffffffull));
   return buf;
 }
+
+}  // namespace
 
 std::string DefaultDatabasePath(bool verbose) {
   namespace fs = std::filesystem;

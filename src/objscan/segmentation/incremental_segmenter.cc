@@ -279,13 +279,13 @@ const ComponentGraph& IncrementalSegmenter::Components(mapping::SurfaceMap* map)
         }
       }
     }
+    const std::int32_t cell = options_.adjacency_cell_voxels;
     for (std::size_t i = 0; i < map->size(); ++i) {
       const std::int32_t l = map->label(i);
       if (l <= 0 || !present[l] || map->structure(i) != mapping::Structure::kNone) continue;
       const geometry::VoxelKey& k = map->key(i);
       if (!marked[block_of(k)]) continue;
-      const std::int32_t n = options_.adjacency_cell_voxels;
-      const geometry::VoxelKey ck{FloorDiv(k.x, n), FloorDiv(k.y, n), FloorDiv(k.z, n)};
+      const geometry::VoxelKey ck{FloorDiv(k.x, cell), FloorDiv(k.y, cell), FloorDiv(k.z, cell)};
       auto [it, inserted] = cell_index.emplace(PackCell(ck.x, ck.y, ck.z), static_cast<std::uint32_t>(cell_key.size()));
       if (inserted) {
         cell_key.push_back(ck);

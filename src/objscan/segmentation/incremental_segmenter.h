@@ -39,7 +39,8 @@ struct IncrementalSegmenterOptions {
   // Adjacency of C: labels with elements in the same or 26-neighbouring cells of this many map
   // voxels per side touch (2: elements within about 2-4 voxels, touching surfaces only, as the
   // paper's). Beyond the paper, 3 also joins parts a few centimetres apart (a pillow above a
-  // mattress, a drawer front across its gap): 15 procedural rooms, recall 53.6 -> 57.1%.
+  // mattress, a drawer front across its gap): 15 procedural rooms, recall 50.6 -> 52.3%, precision
+  // 51.4 -> 54.2%.
   int adjacency_cell_voxels = 3;
   // Structure never shares a frame segment with objects: pixels fused into elements the map tags
   // as floor or wall (mapping::StructureDetector) are segmented apart, and so are pixels of the
@@ -89,8 +90,8 @@ class IncrementalSegmenter {
   SegmenterUpdateStats Update(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
                               mapping::SurfaceMap* map);
 
-  // Components C and their adjacency (elements of two labels in the same or neighbouring cells of
-  // adjacency_cell_voxels voxels, 26-neighbourhood). Recomputes the labels the map reports dirty since the last call.
+  // Components C and their adjacency (elements of two labels in the same or 26-neighbouring cells of
+  // adjacency_cell_voxels voxels). Recomputes the labels the map reports dirty since the last call.
   const ComponentGraph& Components(mapping::SurfaceMap* map);
   // Labels whose component changed (or vanished) in the last Components() call, ascending.
   const std::vector<std::int32_t>& changed_labels() const { return changed_labels_; }
