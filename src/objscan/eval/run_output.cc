@@ -85,6 +85,11 @@ std::string RunJson(const RunOutputInputs& in) {
              {"pose", ModelPoseJson(o.T_world_model)},
              {"points", o.points}};
     if (o.size_rejected_category) obj["size_rejected_category"] = world::CategoryName(*o.size_rejected_category);
+    if (o.wall_opening_share) obj["wall_opening_share"] = *o.wall_opening_share;
+    if (o.wall_opening_relabelled) {
+      obj["wall_opening_replaced_category"] =
+          o.wall_opening_replaced_category ? Json(world::CategoryName(*o.wall_opening_replaced_category)) : Json(nullptr);
+    }
     if (o.gt_instance > 0) obj["gt_instance"] = o.gt_instance;
     objects.push_back(obj);
   }

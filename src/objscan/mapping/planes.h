@@ -71,6 +71,10 @@ struct StructureResult {
   // plane by less than depth_m, within its span, on a face across the wall (|n . wall normal| <
   // max_cos). Such faces are the reveals of door and window openings, which belong to the wall.
   bool InWallReveal(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double depth_m, double max_cos) const;
+  // True when p lies in an opening of a wall: behind its plane by more than min_depth_m and at most
+  // max_depth_m, within its span and height. Nothing but what fills a door or window opening (a
+  // recessed pane, a frame) is seen there: the space behind a wall is outside the room.
+  bool InWallOpening(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const;
 };
 
 class StructureDetector {

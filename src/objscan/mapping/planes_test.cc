@@ -38,5 +38,19 @@ TEST(StructureResultTest, RevealFacesInsideTheWallThicknessBelongToTheWall) {
   EXPECT_FALSE(StructureResult().InWallReveal({-0.05, 1.0, 1.0}, across, 0.3, 0.5));
 }
 
+TEST(StructureResultTest, WallOpeningsAreBehindThePlaneWithinItsExtent) {
+  const StructureResult s = OneWall();
+  // A pane 6 cm into the wall, and one 25 cm in (a deep reveal).
+  EXPECT_TRUE(s.InWallOpening({-0.06, 1.0, 1.2}, 0.02, 0.3));
+  EXPECT_TRUE(s.InWallOpening({-0.25, 1.0, 1.2}, 0.02, 0.3));
+  // On the plane (within min depth), in front of it, too deep, beyond the span or above the wall.
+  EXPECT_FALSE(s.InWallOpening({-0.01, 1.0, 1.2}, 0.02, 0.3));
+  EXPECT_FALSE(s.InWallOpening({0.2, 1.0, 1.2}, 0.02, 0.3));
+  EXPECT_FALSE(s.InWallOpening({-0.35, 1.0, 1.2}, 0.02, 0.3));
+  EXPECT_FALSE(s.InWallOpening({-0.06, 4.2, 1.2}, 0.02, 0.3));
+  EXPECT_FALSE(s.InWallOpening({-0.06, 1.0, 2.7}, 0.02, 0.3));
+  EXPECT_FALSE(StructureResult().InWallOpening({-0.06, 1.0, 1.2}, 0.02, 0.3));
+}
+
 }  // namespace
 }  // namespace objscan::mapping

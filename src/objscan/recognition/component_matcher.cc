@@ -16,6 +16,23 @@ geometry::PointCloud CloudOf(const segmentation::Component& c) {
   return cloud;
 }
 
+segmentation::ModelMatch ToModelMatch(const ModelDatabase& db, const SimilarModel& m) {
+  const DatabaseEntry& e = db.entries()[m.entry];
+  segmentation::ModelMatch match;
+  match.entry_id = m.entry;
+  match.model_id = e.model_index;
+  match.category = e.category;
+  match.full_model = e.kind == EntryKind::kFullModel;
+  match.objectness = m.objectness.objectness;
+  // Rigid part of the alignment (a uniform scale, when estimated, is left out of the pose).
+  const Eigen::Affine3d T = m.T_world_model();
+  geometry::Pose3 pose = geometry::Pose3::Identity();
+  pose.linear() = T.linear() / std::cbrt(std::abs(T.linear().determinant()));
+  pose.translation() = T.translation();
+  match.T_world_model = pose;
+  return match;
+}
+
 }  // namespace
 
 void RecognizerComponentMatcher::SetComponents(const segmentation::ComponentGraph* graph) {
@@ -54,54 +71,41 @@ segmentation::MatchResult RecognizerComponentMatcher::Match(const std::vector<st
   return MatchDescribed(component_ids, scope);
 }
 
-segmentation::MatchResult RecognizerComponentMatcher::MatchDescribed(const std::vector<std::int32_t>& component_ids,
-                                                                     segmentation::MatchScope scope) const {
-  segmentation::MatchResult result;
-  QueryDescription composed;
-  const QueryDescription* query = nullptr;
+const QueryDescription* RecognizerComponentMatcher::DescribedQuery(const std::vector<std::int32_t>& component_ids,
+                                                                  QueryDescription* storage) const {
   if (recognizer_.options().compose_unions) {
     std::vector<const QueryDescription*> parts;
     for (std::int32_t id : component_ids) {
       auto it = descriptions_.find(id);
       if (it != descriptions_.end() && it->second.description) parts.push_back(it->second.description.get());
     }
-    if (parts.empty()) return result;
-    if (parts.size() == 1) {
-      query = parts.front();
-    } else {
-      composed = recognizer_.Compose(parts);
-      query = &composed;
-    }
-  } else {
-    geometry::PointCloud union_cloud;
-    for (std::int32_t id : component_ids) {
-      const segmentation::Component* c = graph_->Find(id);
-      if (!c) continue;
-      union_cloud.points.insert(union_cloud.points.end(), c->points.begin(), c->points.end());
-      union_cloud.normals.insert(union_cloud.normals.end(), c->normals.begin(), c->normals.end());
-    }
-    if (union_cloud.empty()) return result;
-    composed = recognizer_.Describe(union_cloud);
-    query = &composed;
+    if (parts.empty()) return nullptr;
+    if (parts.size() == 1) return parts.front();
+    *storage = recognizer_.Compose(parts);
+    return storage;
   }
+  geometry::PointCloud union_cloud;
+  for (std::int32_t id : component_ids) {
+    const segmentation::Component* c = graph_->Find(id);
+    if (!c) continue;
+    union_cloud.points.insert(union_cloud.points.end(), c->points.begin(), c->points.end());
+    union_cloud.normals.insert(union_cloud.normals.end(), c->normals.begin(), c->normals.end());
+  }
+  if (union_cloud.empty()) return nullptr;
+  *storage = recognizer_.Describe(union_cloud);
+  return storage;
+}
+
+segmentation::MatchResult RecognizerComponentMatcher::MatchDescribed(const std::vector<std::int32_t>& component_ids,
+                                                                     segmentation::MatchScope scope) const {
+  segmentation::MatchResult result;
+  QueryDescription storage;
+  const QueryDescription* query = DescribedQuery(component_ids, &storage);
+  if (query == nullptr) return result;
   const RetrievalScope s =
       scope == segmentation::MatchScope::kFullModels ? RetrievalScope::kFullModels : RetrievalScope::kAllEntries;
-  const ModelDatabase& db = recognizer_.database();
   for (const SimilarModel& m : recognizer_.Retrieve(*query, s, space_)) {
-    const DatabaseEntry& e = db.entries()[m.entry];
-    segmentation::ModelMatch match;
-    match.entry_id = m.entry;
-    match.model_id = e.model_index;
-    match.category = e.category;
-    match.full_model = e.kind == EntryKind::kFullModel;
-    match.objectness = m.objectness.objectness;
-    // Rigid part of the alignment (a uniform scale, when estimated, is left out of the pose).
-    const Eigen::Affine3d T = m.T_world_model();
-    geometry::Pose3 pose = geometry::Pose3::Identity();
-    pose.linear() = T.linear() / std::cbrt(std::abs(T.linear().determinant()));
-    pose.translation() = T.translation();
-    match.T_world_model = pose;
-    result.models.push_back(match);
+    result.models.push_back(ToModelMatch(recognizer_.database(), m));
   }
   // The interface orders M(X) by objectness, best first.
   std::stable_sort(result.models.begin(), result.models.end(),
@@ -109,6 +113,25 @@ segmentation::MatchResult RecognizerComponentMatcher::MatchDescribed(const std::
                      return a.objectness > b.objectness;
                    });
   return result;
+}
+
+std::optional<segmentation::ModelMatch> RecognizerComponentMatcher::BestOfCategory(
+    const std::vector<std::int32_t>& component_ids, world::Category category) {
+  if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");
+  if (recognizer_.options().compose_unions) DescribeMissing({component_ids});
+  QueryDescription storage;
+  const QueryDescription* query = DescribedQuery(component_ids, &storage);
+  if (query == nullptr || query->empty()) return std::nullopt;
+  const ModelDatabase& db = recognizer_.database();
+  std::optional<segmentation::ModelMatch> best;
+  for (const DatabaseModel& model : db.models()) {
+    if (model.category != category || model.full_entry < 0) continue;
+    const SimilarModel m = recognizer_.Match(*query, model.full_entry);
+    if (!m.alignment.ok()) continue;
+    segmentation::ModelMatch match = ToModelMatch(db, m);
+    if (!best || match.objectness > best->objectness) best = match;
+  }
+  return best;
 }
 
 std::vector<segmentation::MatchResult> RecognizerComponentMatcher::MatchBatch(

@@ -3,6 +3,7 @@
 // pre-segmented components of the current ComponentGraph (the seam the post-segmenter talks to).
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -29,6 +30,13 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
   std::vector<segmentation::MatchResult> MatchBatch(const std::vector<std::vector<std::int32_t>>& queries,
                                                     segmentation::MatchScope scope) override;
 
+  // The best full model of `category` for the union: every full-model entry of that category is
+  // aligned to it and measured (not only those the bag of words shortlists). Nullopt when the
+  // database holds no such model or the union has no description. For context that names the
+  // category (an object in a wall opening is a window) but not the model or its pose.
+  std::optional<segmentation::ModelMatch> BestOfCategory(const std::vector<std::int32_t>& component_ids,
+                                                         world::Category category);
+
  private:
   // Describes (in parallel) every component named in `queries` whose description is not cached at
   // its current revision; only with RecognitionOptions::compose_unions.
@@ -36,6 +44,10 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
   // M(X) once DescribeMissing covered X (reads the cache only, so batch queries may run in parallel).
   segmentation::MatchResult MatchDescribed(const std::vector<std::int32_t>& component_ids,
                                            segmentation::MatchScope scope) const;
+  // The description of the union: a cached one, one composed into *storage, or (without
+  // compose_unions) one described into *storage. Null when the union has no points.
+  const QueryDescription* DescribedQuery(const std::vector<std::int32_t>& component_ids,
+                                         QueryDescription* storage) const;
 
   struct CachedDescription {
     std::uint64_t revision = 0;

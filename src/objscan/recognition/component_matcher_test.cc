@@ -62,6 +62,36 @@ TEST_P(ComponentMatcherTest, MatchesUnionsOfComponentsAndOrdersByObjectness) {
   EXPECT_TRUE(matcher.Match({99}, segmentation::MatchScope::kAllEntries).models.empty());
 }
 
+// Context may name the category (an object in a wall opening is a window): the best model of that
+// category is found by aligning every one of its full models, whether retrieval ranked it or not.
+TEST_P(ComponentMatcherTest, BestOfACategoryAlignsEveryModelOfIt) {
+  const Recognizer recognizer(*db_, Options());
+  const segmentation::ComponentGraph graph = TableGraph(Eigen::Vector3f(2.0f, 1.0f, 0.f));
+  RecognizerComponentMatcher matcher(recognizer, 1);
+  matcher.SetComponents(&graph);
+  const auto whole = matcher.Match({1, 2, 3, 4, 5}, segmentation::MatchScope::kFullModels);
+  ASSERT_FALSE(whole.models.empty());
+
+  const auto table = matcher.BestOfCategory({1, 2, 3, 4, 5}, world::Category::kTable);
+  ASSERT_TRUE(table.has_value());
+  EXPECT_EQ(table->category, world::Category::kTable);
+  EXPECT_TRUE(table->full_model);
+  EXPECT_EQ(table->model_id, whole.models[0].model_id);
+  EXPECT_NEAR(table->objectness, whole.BestObjectness(), 0.02);
+  EXPECT_NEAR(table->T_world_model.translation().x(), 2.0, 0.05);
+
+  // The table as a sofa: the sofa model, placed, and a worse fit than the table's.
+  const auto sofa = matcher.BestOfCategory({1, 2, 3, 4, 5}, world::Category::kSofa);
+  ASSERT_TRUE(sofa.has_value());
+  EXPECT_EQ(sofa->category, world::Category::kSofa);
+  EXPECT_EQ(recognizer.database().models()[sofa->model_id].category, world::Category::kSofa);
+  EXPECT_LT(sofa->objectness, table->objectness);
+
+  // No window in the database, and no points for an unknown component.
+  EXPECT_FALSE(matcher.BestOfCategory({1, 2, 3, 4, 5}, world::Category::kWindow).has_value());
+  EXPECT_FALSE(matcher.BestOfCategory({99}, world::Category::kTable).has_value());
+}
+
 // A component whose points changed (new revision) is described anew: the cached description of the
 // old points must not answer for it.
 TEST_P(ComponentMatcherTest, ChangedComponentIsDescribedAnew) {

@@ -45,6 +45,11 @@ struct ObjectRecord {
   std::optional<world::Category> category;      // nullopt: unrecognized
   // The label it had before the size check found no model of that category its size (nullopt: kept).
   std::optional<world::Category> size_rejected_category;
+  // Share of its points in wall openings (when walls are known), and the label recognition gave it
+  // when that share made it a window or took its window label (scanner.wall_openings).
+  std::optional<double> wall_opening_share;
+  std::optional<world::Category> wall_opening_replaced_category;
+  bool wall_opening_relabelled = false;
   std::string model;                            // best database model name ("" when none)
   int model_index = -1;                         // into the database's models
   double objectness = 0.0;

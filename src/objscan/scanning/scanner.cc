@@ -16,9 +16,10 @@
 #include "objscan/planning/exploration.h"
 #include "objscan/planning/next_best_object.h"
 #include "objscan/planning/next_best_view.h"
-#include "objscan/recognition/recognizer.h"
 #include "objscan/recognition/component_matcher.h"
+#include "objscan/recognition/recognizer.h"
 #include "objscan/scanning/size_regrouping.h"
+#include "objscan/scanning/wall_openings.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/sim/depth_camera.h"
@@ -910,9 +911,36 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       host[i] = into;
     }
   }
+  // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
+  const WallOpeningOptions& openings = s.config.scanner.wall_openings;
+  for (std::size_t i = 0; openings.enabled && i < host.size(); ++i) {
+    ObjectRecord& o = rec.objects[i];
+    if (host[i] != static_cast<int>(i) || o.complete || s.structure.walls.empty()) continue;
+    const bool window = o.category == world::Category::kWindow;
+    const WallOpeningResult opening = ClassifyWallOpening(object_points[i], s.structure, window, openings);
+    o.wall_opening_share = opening.share;
+    if (opening.verdict == WallOpeningVerdict::kNotWindow) {
+      o.wall_opening_replaced_category = o.category;
+      o.wall_opening_relabelled = true;
+      o.category.reset();
+    } else if (opening.verdict == WallOpeningVerdict::kWindow) {
+      const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kWindow);
+      if (!best) continue;
+      o.wall_opening_replaced_category = o.category;
+      o.wall_opening_relabelled = true;
+      o.category = best->category;
+      o.model_index = best->model_id;
+      o.model = best->model_id >= 0 ? s.database.models()[best->model_id].name : "";
+      o.T_world_model = best->T_world_model;
+      o.objectness = best->objectness;
+    }
+  }
   for (std::size_t i = 0; i < host.size(); ++i) {
     ObjectRecord& o = rec.objects[i];
     if (host[i] != static_cast<int>(i) || o.complete || !o.category || !size_check.enabled) continue;
+    // A window found by its wall opening keeps its label: the opening bounds it, and what the object
+    // holds beyond it are strips of the wall around the opening.
+    if (o.wall_opening_relabelled) continue;
     const recognition::ObjectExtent extent = recognition::MeasureExtent(object_points[i]);
     const auto plausible = [&](world::Category c) {
       return recognition::IsPlausibleExtent(extent, category_extents.Find(c), size_check);

@@ -6,6 +6,7 @@
 #include "objscan/recognition/category_extent.h"
 #include "objscan/scanning/fragment_absorption.h"
 #include "objscan/scanning/map_space_evidence.h"
+#include "objscan/scanning/wall_openings.h"
 
 namespace objscan::scanning {
 
@@ -54,6 +55,8 @@ struct ScannerOptions {
   // Reported objects whose size no database model of their category has lose that label
   // (recognition/category_extent.h).
   recognition::SizePlausibilityOptions size_check;
+  // Objects in wall openings are reported as windows, window labels elsewhere go (wall_openings.h).
+  WallOpeningOptions wall_openings;
   // What counts as impossible space for a recognition hypothesis (used when
   // recognition.space_weight > 0).
   MapSpaceEvidenceOptions space;
@@ -82,6 +85,7 @@ struct ScannerOptions {
     v("structure_redetect_growth", structure_redetect_growth);
     v("fragments", fragments);
     v("size_check", size_check);
+    v("wall_openings", wall_openings);
     v("space", space);
     v("threads", threads);
   }
@@ -106,6 +110,7 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
     fragments.Validate();
     size_check.Validate();
+    wall_openings.Validate();
     space.Validate();
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }

@@ -1,0 +1,51 @@
+#include "objscan/scanning/wall_openings.h"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "objscan/mapping/planes.h"
+
+namespace objscan::scanning {
+
+namespace {
+constexpr double kLowestQuantile = 0.02;
+}  // namespace
+
+void WallOpeningOptions::Validate() const {
+  config::RequireNonNegative("scanner.wall_openings.min_depth_m", min_depth_m);
+  config::Require(max_depth_m > min_depth_m, "scanner.wall_openings.max_depth_m", "must be > min_depth_m");
+  config::RequireInRange("scanner.wall_openings.window_min_share", window_min_share, 0.0, 1.0);
+  config::RequireInRange("scanner.wall_openings.window_keep_share", window_keep_share, 0.0, 1.0);
+  config::Require(window_keep_share <= window_min_share, "scanner.wall_openings.window_keep_share",
+                  "must be <= window_min_share");
+  config::RequireNonNegative("scanner.wall_openings.min_sill_height_m", min_sill_height_m);
+}
+
+WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points_world,
+                                      const mapping::StructureResult& structure, bool labelled_window,
+                                      const WallOpeningOptions& options) {
+  WallOpeningResult result;
+  if (!options.enabled || points_world.empty() || structure.walls.empty()) return result;
+  std::size_t in_openings = 0;
+  std::vector<float> heights;
+  heights.reserve(points_world.size());
+  for (const Eigen::Vector3f& p : points_world) {
+    heights.push_back(p.z());
+    if (structure.InWallOpening(p.cast<double>(), options.min_depth_m, options.max_depth_m)) ++in_openings;
+  }
+  result.share = static_cast<double>(in_openings) / static_cast<double>(points_world.size());
+  // The lowest point but a few: strips of wall or floor left at an object's border do not make it
+  // reach the floor.
+  const auto low = heights.begin() + static_cast<std::ptrdiff_t>(kLowestQuantile * (heights.size() - 1));
+  std::nth_element(heights.begin(), low, heights.end());
+  const double floor_z = structure.has_floor ? structure.floor_height_m : 0.0;
+  const bool off_floor = *low - floor_z >= options.min_sill_height_m;
+  if (!labelled_window && off_floor && result.share >= options.window_min_share) {
+    result.verdict = WallOpeningVerdict::kWindow;
+  } else if (labelled_window && result.share < options.window_keep_share) {
+    result.verdict = WallOpeningVerdict::kNotWindow;
+  }
+  return result;
+}
+
+}  // namespace objscan::scanning

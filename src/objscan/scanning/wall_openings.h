@@ -1,0 +1,56 @@
+#pragma once
+// Beyond the paper: windows from where they are. A window fills an opening in a wall, so its pane
+// and frame lie behind the wall's plane, where nothing else in a room can be seen; seen from inside
+// it is a flat framed rectangle that retrieval confuses with the fronts of dressers, shelves and
+// refrigerators. At the end of a run, an object most of whose points lie in wall openings is
+// reported as a window (the window model that fits it best, with its pose), and an object labelled
+// window with almost none there loses that label.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "objscan/common/config.h"
+
+namespace objscan::mapping {
+struct StructureResult;
+}  // namespace objscan::mapping
+
+namespace objscan::scanning {
+
+struct WallOpeningOptions {
+  bool enabled = true;          // false = the paper: labels from recognition alone
+  double min_depth_m = 0.02;    // behind a wall plane by more than this ...
+  double max_depth_m = 0.3;     // ... and at most this (the wall's thickness and a deep reveal)
+  double window_min_share = 0.5;  // share of an object's points in openings that makes it a window
+  double window_keep_share = 0.1; // a window label needs at least this share
+  double min_sill_height_m = 0.2; // a window's lowest point is this far above the floor (doors reach it)
+
+  template <class V>
+  void Visit(V& v) {
+    v("enabled", enabled);
+    v("min_depth_m", min_depth_m);
+    v("max_depth_m", max_depth_m);
+    v("window_min_share", window_min_share);
+    v("window_keep_share", window_keep_share);
+    v("min_sill_height_m", min_sill_height_m);
+  }
+  void Validate() const;
+};
+
+enum class WallOpeningVerdict {
+  kNoChange,   // leave the label as recognition gave it
+  kWindow,     // in a wall opening: a window
+  kNotWindow,  // a window label on something that is not in an opening
+};
+
+struct WallOpeningResult {
+  double share = 0.0;  // share of the points in wall openings
+  WallOpeningVerdict verdict = WallOpeningVerdict::kNoChange;
+};
+
+// The verdict for an object with these points whose current label is (or is not) window.
+WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points_world,
+                                      const mapping::StructureResult& structure, bool labelled_window,
+                                      const WallOpeningOptions& options);
+
+}  // namespace objscan::scanning

@@ -1,0 +1,112 @@
+#include "objscan/scanning/wall_openings.h"
+
+#include <gtest/gtest.h>
+
+#include "objscan/mapping/planes.h"
+
+namespace objscan::scanning {
+namespace {
+
+// A room whose wall x = 0 faces +x, 4 m long and 2.5 m high, over a floor at z = 0.
+mapping::StructureResult OneWallRoom() {
+  mapping::StructureResult s;
+  s.has_floor = true;
+  s.floor_height_m = 0.0;
+  mapping::WallPlane w;
+  w.normal = Eigen::Vector3d::UnitX();
+  w.offset_m = 0.0;
+  w.z_min_m = 0.0;
+  w.z_max_m = 2.5;
+  w.span_min_m = 0.0;
+  w.span_max_m = 4.0;
+  s.walls.push_back(w);
+  return s;
+}
+
+// A vertical rectangle of points at x = `x`, y in [y0, y1], z in [z0, z1], 2 cm apart.
+std::vector<Eigen::Vector3f> Pane(double x, double y0, double y1, double z0, double z1) {
+  std::vector<Eigen::Vector3f> points;
+  for (double y = y0; y <= y1 + 1e-9; y += 0.02) {
+    for (double z = z0; z <= z1 + 1e-9; z += 0.02) points.emplace_back(x, y, z);
+  }
+  return points;
+}
+
+void Append(const std::vector<Eigen::Vector3f>& more, std::vector<Eigen::Vector3f>* points) {
+  points->insert(points->end(), more.begin(), more.end());
+}
+
+TEST(WallOpeningTest, ARecessedPaneOffTheFloorIsAWindow) {
+  const mapping::StructureResult room = OneWallRoom();
+  const WallOpeningOptions options;
+  // A pane 6 cm behind the wall plane, its sill at 0.9 m.
+  const WallOpeningResult r = ClassifyWallOpening(Pane(-0.06, 1.0, 2.0, 0.9, 2.0), room, false, options);
+  EXPECT_NEAR(r.share, 1.0, 1e-9);
+  EXPECT_EQ(r.verdict, WallOpeningVerdict::kWindow);
+  // Already a window: nothing to change.
+  EXPECT_EQ(ClassifyWallOpening(Pane(-0.06, 1.0, 2.0, 0.9, 2.0), room, true, options).verdict,
+            WallOpeningVerdict::kNoChange);
+}
+
+TEST(WallOpeningTest, WallStripsAroundTheOpeningDoNotHideIt) {
+  const mapping::StructureResult room = OneWallRoom();
+  WallOpeningOptions options;
+  // The pane and a strip of wall beside it down to the floor (on the plane, untagged): the strip is
+  // a third of the points, and a few of them reach the floor.
+  std::vector<Eigen::Vector3f> points = Pane(-0.06, 1.0, 2.0, 0.9, 2.0);
+  const std::size_t pane = points.size();
+  Append(Pane(0.0, 2.02, 2.2, 0.9, 2.0), &points);
+  Append(Pane(0.0, 2.02, 2.04, 0.0, 0.88), &points);
+  const WallOpeningResult r = ClassifyWallOpening(points, room, false, options);
+  EXPECT_NEAR(r.share, static_cast<double>(pane) / points.size(), 1e-9);
+  EXPECT_GT(r.share, 0.5);
+  EXPECT_EQ(r.verdict, WallOpeningVerdict::kWindow);
+  // With the bar raised above that share, it stays as it is.
+  options.window_min_share = 0.95;
+  EXPECT_EQ(ClassifyWallOpening(points, room, false, options).verdict, WallOpeningVerdict::kNoChange);
+}
+
+TEST(WallOpeningTest, ThingsInTheRoomAreNotWindows) {
+  const mapping::StructureResult room = OneWallRoom();
+  const WallOpeningOptions options;
+  // A cabinet front 40 cm in front of the wall, and a monitor 5 cm in front of it.
+  EXPECT_EQ(ClassifyWallOpening(Pane(0.4, 1.0, 2.0, 0.0, 0.9), room, false, options).verdict,
+            WallOpeningVerdict::kNoChange);
+  const WallOpeningResult monitor = ClassifyWallOpening(Pane(0.05, 1.0, 1.6, 0.8, 1.2), room, true, options);
+  EXPECT_EQ(monitor.share, 0.0);
+  EXPECT_EQ(monitor.verdict, WallOpeningVerdict::kNotWindow);
+}
+
+TEST(WallOpeningTest, AnOpeningThatReachesTheFloorIsNoWindow) {
+  const mapping::StructureResult room = OneWallRoom();
+  const WallOpeningOptions options;
+  // A recessed door leaf: in the opening, but from the floor up.
+  EXPECT_EQ(ClassifyWallOpening(Pane(-0.05, 1.0, 1.9, 0.0, 2.0), room, false, options).verdict,
+            WallOpeningVerdict::kNoChange);
+}
+
+TEST(WallOpeningTest, OffOrWithoutWallsNothingChanges) {
+  WallOpeningOptions off;
+  off.enabled = false;
+  const std::vector<Eigen::Vector3f> pane = Pane(-0.06, 1.0, 2.0, 0.9, 2.0);
+  EXPECT_EQ(ClassifyWallOpening(pane, OneWallRoom(), false, off).verdict, WallOpeningVerdict::kNoChange);
+  EXPECT_EQ(ClassifyWallOpening(pane, mapping::StructureResult(), true, WallOpeningOptions()).verdict,
+            WallOpeningVerdict::kNoChange);
+  EXPECT_EQ(ClassifyWallOpening({}, OneWallRoom(), true, WallOpeningOptions()).verdict, WallOpeningVerdict::kNoChange);
+}
+
+TEST(WallOpeningTest, OptionsAreChecked) {
+  WallOpeningOptions o;
+  o.max_depth_m = 0.01;
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.window_keep_share = 0.8;
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.window_min_share = 1.5;
+  EXPECT_ANY_THROW(o.Validate());
+  EXPECT_NO_THROW(WallOpeningOptions().Validate());
+}
+
+}  // namespace
+}  // namespace objscan::scanning
