@@ -913,17 +913,29 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   }
   // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
   const WallOpeningOptions& openings = s.config.scanner.wall_openings;
+  std::vector<bool> in_opening(host.size(), false);
   for (std::size_t i = 0; openings.enabled && i < host.size(); ++i) {
     ObjectRecord& o = rec.objects[i];
-    if (host[i] != static_cast<int>(i) || o.complete || s.structure.walls.empty()) continue;
+    if (host[i] != static_cast<int>(i) || s.structure.walls.empty()) continue;
+    // A completed object stands for its model; what decides is the surface the robot saw of it.
+    std::vector<Eigen::Vector3f> seen;
+    if (o.complete) {
+      for (auto l : o.labels) {
+        if (const segmentation::Component* c = s.segmenter_graph().Find(l)) {
+          seen.insert(seen.end(), c->points.begin(), c->points.end());
+        }
+      }
+    }
     const bool window = o.category == world::Category::kWindow;
-    const WallOpeningResult opening = ClassifyWallOpening(object_points[i], s.structure, window, openings);
+    const WallOpeningResult opening =
+        ClassifyWallOpening(o.complete ? seen : object_points[i], s.structure, window, openings);
     o.wall_opening_share = opening.share;
+    in_opening[i] = opening.verdict == WallOpeningVerdict::kWindow;
     if (opening.verdict == WallOpeningVerdict::kNotWindow) {
       o.wall_opening_replaced_category = o.category;
       o.wall_opening_relabelled = true;
       o.category.reset();
-    } else if (opening.verdict == WallOpeningVerdict::kWindow) {
+    } else if (opening.verdict == WallOpeningVerdict::kWindow && !window) {
       const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kWindow);
       if (!best) continue;
       o.wall_opening_replaced_category = o.category;
@@ -938,9 +950,9 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   for (std::size_t i = 0; i < host.size(); ++i) {
     ObjectRecord& o = rec.objects[i];
     if (host[i] != static_cast<int>(i) || o.complete || !o.category || !size_check.enabled) continue;
-    // A window found by its wall opening keeps its label: the opening bounds it, and what the object
-    // holds beyond it are strips of the wall around the opening.
-    if (o.wall_opening_relabelled) continue;
+    // A window in a wall opening keeps its label: the opening bounds it, and what the object holds
+    // beyond it are strips of the wall around the opening.
+    if (in_opening[i] && o.category == world::Category::kWindow) continue;
     const recognition::ObjectExtent extent = recognition::MeasureExtent(object_points[i]);
     const auto plausible = [&](world::Category c) {
       return recognition::IsPlausibleExtent(extent, category_extents.Find(c), size_check);

@@ -40,7 +40,7 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
   std::nth_element(heights.begin(), low, heights.end());
   const double floor_z = structure.has_floor ? structure.floor_height_m : 0.0;
   const bool off_floor = *low - floor_z >= options.min_sill_height_m;
-  if (!labelled_window && off_floor && result.share >= options.window_min_share) {
+  if (off_floor && result.share >= options.window_min_share) {
     result.verdict = WallOpeningVerdict::kWindow;
   } else if (labelled_window && result.share < options.window_keep_share) {
     result.verdict = WallOpeningVerdict::kNotWindow;

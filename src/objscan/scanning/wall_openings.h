@@ -39,7 +39,7 @@ struct WallOpeningOptions {
 
 enum class WallOpeningVerdict {
   kNoChange,   // leave the label as recognition gave it
-  kWindow,     // in a wall opening: a window
+  kWindow,     // in a wall opening: a window (whatever its label; its size is the opening's)
   kNotWindow,  // a window label on something that is not in an opening
 };
 

@@ -43,9 +43,9 @@ TEST(WallOpeningTest, ARecessedPaneOffTheFloorIsAWindow) {
   const WallOpeningResult r = ClassifyWallOpening(Pane(-0.06, 1.0, 2.0, 0.9, 2.0), room, false, options);
   EXPECT_NEAR(r.share, 1.0, 1e-9);
   EXPECT_EQ(r.verdict, WallOpeningVerdict::kWindow);
-  // Already a window: nothing to change.
+  // Already labelled window: still in an opening.
   EXPECT_EQ(ClassifyWallOpening(Pane(-0.06, 1.0, 2.0, 0.9, 2.0), room, true, options).verdict,
-            WallOpeningVerdict::kNoChange);
+            WallOpeningVerdict::kWindow);
 }
 
 TEST(WallOpeningTest, WallStripsAroundTheOpeningDoNotHideIt) {
