@@ -90,6 +90,16 @@ std::string RunJson(const RunOutputInputs& in) {
       obj["wall_opening_replaced_category"] =
           o.wall_opening_replaced_category ? Json(world::CategoryName(*o.wall_opening_replaced_category)) : Json(nullptr);
     }
+    obj["height_m"] = o.height_m;
+    obj["footprint_diagonal_m"] = o.footprint_diagonal_m;
+    if (!o.alternatives.empty()) {
+      Json alternatives = Json::array();
+      for (const auto& a : o.alternatives) {
+        alternatives.push_back(
+            Json{{"category", world::CategoryName(a.category)}, {"model", a.model}, {"objectness", a.objectness}});
+      }
+      obj["alternatives"] = alternatives;
+    }
     if (o.gt_instance > 0) obj["gt_instance"] = o.gt_instance;
     objects.push_back(obj);
   }

@@ -40,6 +40,13 @@ struct StepRecord {
   std::vector<std::string> notes;
 };
 
+// Another category recognition considered for an object: its best full model of that category.
+struct ObjectAlternative {
+  world::Category category = world::Category::kOther;
+  std::string model;
+  double objectness = 0.0;
+};
+
 struct ObjectRecord {
   int id = -1;                                  // smallest pre-segment label of the object
   std::optional<world::Category> category;      // nullopt: unrecognized
@@ -57,6 +64,11 @@ struct ObjectRecord {
   bool given_up = false;                        // ran out of views or of valid views
   geometry::Pose3 T_world_model = geometry::Pose3::Identity();
   int points = 0;                               // map elements of the object
+  // Size of what was seen of it (bounding-box height, smallest footprint rectangle's diagonal).
+  double height_m = 0.0;
+  double footprint_diagonal_m = 0.0;
+  // The full models of M(r) at the end of the run, best first (empty for completed objects).
+  std::vector<ObjectAlternative> alternatives;
   std::vector<std::int32_t> labels;             // its pre-segment labels
   int gt_instance = -1;                         // majority ground-truth instance (evaluation only)
 };

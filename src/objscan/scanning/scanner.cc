@@ -911,6 +911,18 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       host[i] = into;
     }
   }
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    if (host[i] != static_cast<int>(i)) continue;
+    ObjectRecord& o = rec.objects[i];
+    const recognition::ObjectExtent extent = recognition::MeasureExtent(object_points[i]);
+    o.height_m = extent.height_m;
+    o.footprint_diagonal_m = extent.footprint_diagonal_m;
+    if (full_matches[i] == nullptr) continue;
+    for (const auto& m : full_matches[i]->models) {
+      o.alternatives.push_back(
+          {m.category, m.model_id >= 0 ? s.database.models()[m.model_id].name : std::string(), m.objectness});
+    }
+  }
   // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
   const WallOpeningOptions& openings = s.config.scanner.wall_openings;
   std::vector<bool> in_opening(host.size(), false);
