@@ -11,7 +11,7 @@
 namespace objscan::recognition {
 
 struct VocabularyOptions {
-  int num_words = 64;
+  int num_words = 128;  // measured: 128 words beat 64 on 15 rooms with two vocabulary seeds
   int kmeans_iterations = 15;
   int max_training_descriptors = 40000;  // a seeded random sample of the database descriptors
   int soft_assignments = 3;              // nearest words per keypoint (paper: three)
