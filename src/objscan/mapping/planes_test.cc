@@ -2,23 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include "objscan/mapping/testing/one_wall.h"
+
 namespace objscan::mapping {
 namespace {
 
-// One wall: the plane x = 0 facing +x (the room), spanning y in [0, 4] and z in [0, 2.5].
-StructureResult OneWall() {
-  StructureResult s;
-  WallPlane w;
-  w.normal = Eigen::Vector3d::UnitX();
-  w.offset_m = 0.0;
-  w.z_min_m = 0.0;
-  w.z_max_m = 2.5;
-  // Along = -n.y x + n.x y = y.
-  w.span_min_m = 0.0;
-  w.span_max_m = 4.0;
-  s.walls.push_back(w);
-  return s;
-}
+using testing::OneWall;
 
 TEST(StructureResultTest, RevealFacesInsideTheWallThicknessBelongToTheWall) {
   const StructureResult s = OneWall();

@@ -391,6 +391,20 @@ struct Scanner::State {
   }
 
   // Fragment absorption's view of an object with a best model: the model's points and pose.
+  // The database model's name; "" for none (model_id < 0).
+  std::string ModelName(int model_id) const {
+    return model_id >= 0 ? database.models()[static_cast<std::size_t>(model_id)].name : std::string();
+  }
+
+  // The object is reported as `m`: its category, model, pose and objectness.
+  void Adopt(const segmentation::ModelMatch& m, ObjectRecord* o) const {
+    o->category = m.category;
+    o->model_index = m.model_id;
+    o->model = ModelName(m.model_id);
+    o->T_world_model = m.T_world_model;
+    o->objectness = m.objectness;
+  }
+
   void SetModel(const segmentation::ModelMatch& m, FragmentCandidate* f) const {
     if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return;
     f->model_points = &database.entries()[static_cast<std::size_t>(m.entry_id)].points;
@@ -809,7 +823,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.id = c.id;
     o.category = c.model.category;
     o.model_index = c.model.model_id;
-    if (c.model.model_id >= 0) o.model = s.database.models()[c.model.model_id].name;
+    o.model = s.ModelName(c.model.model_id);
     o.objectness = c.objectness;
     o.complete = true;
     o.T_world_model = c.model.T_world_model;
@@ -839,7 +853,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.category = r.category;
     if (const auto* best = r.best_model()) {
       o.model_index = best->model_id;
-      if (best->model_id >= 0) o.model = s.database.models()[best->model_id].name;
+      o.model = s.ModelName(best->model_id);
       o.T_world_model = best->T_world_model;
       s.SetModel(*best, &f);
     }
@@ -911,17 +925,16 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       host[i] = into;
     }
   }
+  // The size of what was seen of each object (the size check below compares it with the models').
+  std::vector<recognition::ObjectExtent> extents(host.size());
   for (std::size_t i = 0; i < host.size(); ++i) {
     if (host[i] != static_cast<int>(i)) continue;
     ObjectRecord& o = rec.objects[i];
-    const recognition::ObjectExtent extent = recognition::MeasureExtent(object_points[i]);
-    o.height_m = extent.height_m;
-    o.footprint_diagonal_m = extent.footprint_diagonal_m;
+    extents[i] = recognition::MeasureExtent(object_points[i]);
+    o.height_m = extents[i].height_m;
+    o.footprint_diagonal_m = extents[i].footprint_diagonal_m;
     if (full_matches[i] == nullptr) continue;
-    for (const auto& m : full_matches[i]->models) {
-      o.alternatives.push_back(
-          {m.category, m.model_id >= 0 ? s.database.models()[m.model_id].name : std::string(), m.objectness});
-    }
+    for (const auto& m : full_matches[i]->models) o.alternatives.push_back({m.category, s.ModelName(m.model_id), m.objectness});
   }
   // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
   const WallOpeningOptions& openings = s.config.scanner.wall_openings;
@@ -952,11 +965,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       if (!best) continue;
       o.wall_opening_replaced_category = o.category;
       o.wall_opening_relabelled = true;
-      o.category = best->category;
-      o.model_index = best->model_id;
-      o.model = best->model_id >= 0 ? s.database.models()[best->model_id].name : "";
-      o.T_world_model = best->T_world_model;
-      o.objectness = best->objectness;
+      s.Adopt(*best, &o);
     }
   }
   for (std::size_t i = 0; i < host.size(); ++i) {
@@ -965,9 +974,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     // A window in a wall opening keeps its label: the opening bounds it, and what the object holds
     // beyond it are strips of the wall around the opening.
     if (in_opening[i] && o.category == world::Category::kWindow) continue;
-    const recognition::ObjectExtent extent = recognition::MeasureExtent(object_points[i]);
     const auto plausible = [&](world::Category c) {
-      return recognition::IsPlausibleExtent(extent, category_extents.Find(c), size_check);
+      return recognition::IsPlausibleExtent(extents[i], category_extents.Find(c), size_check);
     };
     if (plausible(*o.category)) continue;
     o.size_rejected_category = o.category;
@@ -977,12 +985,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     for (const auto& m : full_matches[i]->models) {
       if (plausible(m.category) && (best == nullptr || m.objectness > best->objectness)) best = &m;
     }
-    if (best == nullptr) continue;
-    o.category = best->category;
-    o.model_index = best->model_id;
-    o.model = best->model_id >= 0 ? s.database.models()[best->model_id].name : "";
-    o.T_world_model = best->T_world_model;
-    o.objectness = best->objectness;
+    if (best != nullptr) s.Adopt(*best, &o);
   }
   std::vector<ObjectRecord> kept;
   for (std::size_t i = 0; i < host.size(); ++i) {

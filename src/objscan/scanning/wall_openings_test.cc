@@ -3,23 +3,16 @@
 #include <gtest/gtest.h>
 
 #include "objscan/mapping/planes.h"
+#include "objscan/mapping/testing/one_wall.h"
 
 namespace objscan::scanning {
 namespace {
 
 // A room whose wall x = 0 faces +x, 4 m long and 2.5 m high, over a floor at z = 0.
 mapping::StructureResult OneWallRoom() {
-  mapping::StructureResult s;
+  mapping::StructureResult s = mapping::testing::OneWall();
   s.has_floor = true;
   s.floor_height_m = 0.0;
-  mapping::WallPlane w;
-  w.normal = Eigen::Vector3d::UnitX();
-  w.offset_m = 0.0;
-  w.z_min_m = 0.0;
-  w.z_max_m = 2.5;
-  w.span_min_m = 0.0;
-  w.span_max_m = 4.0;
-  s.walls.push_back(w);
   return s;
 }
 
