@@ -55,9 +55,12 @@ struct SizePlausibilityOptions {
   // objects (or a wall) taken for one.
   double min_ratio = 0.5;
   double max_ratio = 1.4;
-  // An implausible object takes the best-fitting plausible category among its full-model matches;
-  // false (or none plausible) = it is reported unrecognized.
-  bool relabel = false;
+  // An object whose label a check took (this one, or a window label outside wall openings) takes the
+  // best-fitting other category among its full-model matches that its size fits, when that match's
+  // objectness reaches relabel_min_objectness; false (or no such match) = it is reported
+  // unrecognized. The threshold keeps guesses out: most such labels are right above ~0.92.
+  bool relabel = true;
+  double relabel_min_objectness = 0.92;
   // Before the check, pieces too small for their label join an adjacent object whose category the
   // union fits (scanning/size_regrouping.h).
   bool regroup = true;
@@ -69,6 +72,7 @@ struct SizePlausibilityOptions {
     v("min_ratio", min_ratio);
     v("max_ratio", max_ratio);
     v("relabel", relabel);
+    v("relabel_min_objectness", relabel_min_objectness);
     v("regroup", regroup);
     v("adjacency_m", adjacency_m);
   }

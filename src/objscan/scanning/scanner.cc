@@ -18,6 +18,7 @@
 #include "objscan/planning/next_best_view.h"
 #include "objscan/recognition/component_matcher.h"
 #include "objscan/recognition/recognizer.h"
+#include "objscan/scanning/label_replacement.h"
 #include "objscan/scanning/size_regrouping.h"
 #include "objscan/scanning/wall_openings.h"
 #include "objscan/segmentation/incremental_segmenter.h"
@@ -939,6 +940,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
   const WallOpeningOptions& openings = s.config.scanner.wall_openings;
   std::vector<bool> in_opening(host.size(), false);
+  // The label each check took from an object (size_check.relabel may replace it below).
+  std::vector<std::optional<world::Category>> taken(host.size());
   for (std::size_t i = 0; openings.enabled && i < host.size(); ++i) {
     ObjectRecord& o = rec.objects[i];
     if (host[i] != static_cast<int>(i) || s.structure.walls.empty()) continue;
@@ -959,6 +962,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     if (opening.verdict == WallOpeningVerdict::kNotWindow) {
       o.wall_opening_replaced_category = o.category;
       o.wall_opening_relabelled = true;
+      taken[i] = o.category;
       o.category.reset();
     } else if (opening.verdict == WallOpeningVerdict::kWindow && !window) {
       const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kWindow);
@@ -979,13 +983,15 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     };
     if (plausible(*o.category)) continue;
     o.size_rejected_category = o.category;
+    taken[i] = o.category;
     o.category.reset();
-    if (!size_check.relabel || full_matches[i] == nullptr) continue;
-    const segmentation::ModelMatch* best = nullptr;
-    for (const auto& m : full_matches[i]->models) {
-      if (plausible(m.category) && (best == nullptr || m.objectness > best->objectness)) best = &m;
-    }
-    if (best != nullptr) s.Adopt(*best, &o);
+  }
+  // A label a check took is replaced by a confident, plausible match of another category.
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    if (host[i] != static_cast<int>(i) || !taken[i] || full_matches[i] == nullptr) continue;
+    const segmentation::ModelMatch* replacement =
+        ReplacementLabel(*taken[i], *full_matches[i], extents[i], in_opening[i], category_extents, size_check);
+    if (replacement != nullptr) s.Adopt(*replacement, &rec.objects[i]);
   }
   std::vector<ObjectRecord> kept;
   for (std::size_t i = 0; i < host.size(); ++i) {
@@ -1014,6 +1020,11 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       }
     }
   }
+  // A completed object whose every piece has since become wall or floor is gone from the map: what
+  // it stood for is structure (or reported by the object that now holds its surface).
+  rec.objects.erase(std::remove_if(rec.objects.begin(), rec.objects.end(),
+                                   [](const ObjectRecord& o) { return o.points == 0; }),
+                    rec.objects.end());
   rec.timing_s.total = s.wall.ElapsedSeconds();
   return rec;
 }

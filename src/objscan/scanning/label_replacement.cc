@@ -1,0 +1,20 @@
+#include "objscan/scanning/label_replacement.h"
+
+namespace objscan::scanning {
+
+const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const segmentation::MatchResult& matches,
+                                                 const recognition::ObjectExtent& extent, bool in_wall_opening,
+                                                 const recognition::CategoryExtents& extents,
+                                                 const recognition::SizePlausibilityOptions& options) {
+  if (!options.enabled || !options.relabel) return nullptr;
+  const segmentation::ModelMatch* best = nullptr;
+  for (const auto& m : matches.models) {
+    if (m.category == taken || m.objectness < options.relabel_min_objectness) continue;
+    if (m.category == world::Category::kWindow && !in_wall_opening) continue;
+    if (!recognition::IsPlausibleExtent(extent, extents.Find(m.category), options)) continue;
+    if (best == nullptr || m.objectness > best->objectness) best = &m;
+  }
+  return best;
+}
+
+}  // namespace objscan::scanning
