@@ -20,6 +20,7 @@ void StructureOptions::Validate() const {
   config::RequireNonNegative("wall_min_area_m2", wall_min_area_m2);
   config::RequireNonNegative("wall_min_height_m", wall_min_height_m);
   config::RequireInRange("wall_max_behind_fraction", wall_max_behind_fraction, 0.0, 1.0);
+  config::RequireNonNegative("furniture_top_margin_m", furniture_top_margin_m);
   config::RequireInRange("wall_max_count", wall_max_count, 0, 1000);
 }
 
@@ -265,8 +266,10 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     result.walls.push_back(wall);
   }
 
-  // A vertical plane with a parallel wall behind it that overlaps it along the wall is the face of
-  // furniture standing against that wall (a wardrobe), not a wall.
+  // A vertical plane with a parallel wall behind it is the face of furniture standing against that
+  // wall (a wardrobe), not a wall, when the wall overlaps it along the wall or rises clearly above
+  // it (the wall behind a wardrobe in a corner is hidden where the two overlap; the step of an
+  // L-shaped room is as tall as the wall behind it).
   std::vector<WallPlane> walls;
   for (const WallPlane& w : result.walls) {
     bool in_front = false;
@@ -274,6 +277,9 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
       if (&v == &w || w.normal.dot(v.normal) < std::cos(2 * abin) || v.offset_m > w.offset_m - 2.0 * tol) continue;
       const double overlap = std::min(w.span_max_m, v.span_max_m) - std::max(w.span_min_m, v.span_min_m);
       if (overlap > 0.5 * (w.span_max_m - w.span_min_m)) in_front = true;
+      if (options_.furniture_top_margin_m > 0.0 && v.z_max_m - w.z_max_m > options_.furniture_top_margin_m) {
+        in_front = true;
+      }
     }
     if (!in_front) walls.push_back(w);
   }

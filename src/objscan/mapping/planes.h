@@ -23,6 +23,9 @@ struct StructureOptions {
   double wall_min_height_m = 1.0;       // vertical extent of the wall's elements
   double wall_max_behind_fraction = 0.03;  // share of all elements farther than tolerance behind it
   int wall_max_count = 12;
+  // A plane in front of a parallel wall whose top this much lower than the wall's is furniture
+  // against it (0 = only when the wall behind overlaps it along the wall).
+  double furniture_top_margin_m = 0.2;
 
   template <class V>
   void Visit(V& v) {
@@ -37,6 +40,7 @@ struct StructureOptions {
     v("wall_min_height_m", wall_min_height_m);
     v("wall_max_behind_fraction", wall_max_behind_fraction);
     v("wall_max_count", wall_max_count);
+    v("furniture_top_margin_m", furniture_top_margin_m);
   }
   void Validate() const;
 };

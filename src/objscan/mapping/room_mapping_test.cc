@@ -292,5 +292,53 @@ TEST(StructureTest, LShapedRoomHasInnerWallsAndAWardrobeIsNoWall) {
   EXPECT_LT(static_cast<double>(box_structural) / box_n, 0.03);
 }
 
+// A 2 m wardrobe in the corner of a 2.4 m room: the wall behind it is seen only beside it, so no
+// wall overlaps its front along the wall; but that wall rises well above it, so its front is
+// furniture, not a wall. With the height rule off (furniture_top_margin_m = 0) it would be a wall.
+TEST(StructureTest, AWardrobeInACornerIsNoWall) {
+  AnalyticWorld room;
+  room.Add(Eigen::Vector3d(-2.1, -1.6, -0.05), Eigen::Vector3d(2.1, 1.6, 0.0), kFloor);
+  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);   // x = -2
+  room.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // x = 2
+  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);   // y = -1.5
+  room.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // y = 1.5
+  room.Add(Eigen::Vector3d(-2.0, -1.5, 0.0), Eigen::Vector3d(-0.6, -0.9, 2.0), kBox);   // wardrobe
+  Rng rng(7);
+  RoomScan scan;
+  // Level and downward views: the level ones see the wall above the wardrobe's top.
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-0.5, 0.5, 1.2), Eigen::Vector3d(1.0, -0.5, 1.2)}) {
+    for (int yaw = 0; yaw < 360; yaw += 45) {
+      Observe(room, View(p, yaw, -25), &rng, &scan);
+      Observe(room, View(p, yaw + 22.5, 0), &rng, &scan);
+    }
+  }
+  const auto wardrobe_front_is_wall = [](const StructureResult& structure) {
+    for (const WallPlane& w : structure.walls) {
+      if (w.normal.dot(Eigen::Vector3d(0, 1, 0)) > 0.999 && std::fabs(w.offset_m - (-0.9)) < 0.03) return true;
+    }
+    return false;
+  };
+  const auto box_structural_share = [&]() {
+    std::size_t box_n = 0, box_structural = 0;
+    for (std::size_t i = 0; i < scan.surface.size(); ++i) {
+      if (scan.surface.gt_instance(i) != kBox) continue;
+      ++box_n;
+      box_structural += scan.surface.structure(i) != Structure::kNone ? 1 : 0;
+    }
+    EXPECT_GT(box_n, 5000u);
+    return static_cast<double>(box_structural) / std::max<std::size_t>(box_n, 1);
+  };
+  StructureOptions overlap_only;
+  overlap_only.furniture_top_margin_m = 0.0;
+  scan.structure = StructureDetector(overlap_only).Update(&scan.surface);
+  EXPECT_TRUE(wardrobe_front_is_wall(scan.structure)) << "the case the height rule is for";
+  EXPECT_GT(box_structural_share(), 0.2);
+
+  scan.structure = StructureDetector().Update(&scan.surface);
+  EXPECT_FALSE(wardrobe_front_is_wall(scan.structure));
+  EXPECT_EQ(scan.structure.walls.size(), 4u);
+  EXPECT_LT(box_structural_share(), 0.03);
+}
+
 }  // namespace
 }  // namespace objscan::mapping
