@@ -10,18 +10,18 @@
 namespace objscan::mapping {
 
 void StructureOptions::Validate() const {
-  config::RequirePositive("floor_search_height_m", floor_search_height_m);
-  config::RequireInRange("floor_max_tilt_deg", floor_max_tilt_deg, 0.0, 90.0);
-  config::RequireNonNegative("floor_min_area_m2", floor_min_area_m2);
-  config::RequirePositive("plane_tolerance_m", plane_tolerance_m);
-  config::RequireInRange("wall_max_tilt_deg", wall_max_tilt_deg, 0.0, 90.0);
-  config::RequireInRange("wall_angle_bin_deg", wall_angle_bin_deg, 0.1, 45.0);
-  config::RequirePositive("wall_offset_bin_m", wall_offset_bin_m);
-  config::RequireNonNegative("wall_min_area_m2", wall_min_area_m2);
-  config::RequireNonNegative("wall_min_height_m", wall_min_height_m);
-  config::RequireInRange("wall_max_behind_fraction", wall_max_behind_fraction, 0.0, 1.0);
-  config::RequireNonNegative("furniture_top_margin_m", furniture_top_margin_m);
-  config::RequireInRange("wall_max_count", wall_max_count, 0, 1000);
+  config::RequirePositive("structure.floor_search_height_m", floor_search_height_m);
+  config::RequireInRange("structure.floor_max_tilt_deg", floor_max_tilt_deg, 0.0, 90.0);
+  config::RequireNonNegative("structure.floor_min_area_m2", floor_min_area_m2);
+  config::RequirePositive("structure.plane_tolerance_m", plane_tolerance_m);
+  config::RequireInRange("structure.wall_max_tilt_deg", wall_max_tilt_deg, 0.0, 90.0);
+  config::RequireInRange("structure.wall_angle_bin_deg", wall_angle_bin_deg, 0.1, 45.0);
+  config::RequirePositive("structure.wall_offset_bin_m", wall_offset_bin_m);
+  config::RequireNonNegative("structure.wall_min_area_m2", wall_min_area_m2);
+  config::RequireNonNegative("structure.wall_min_height_m", wall_min_height_m);
+  config::RequireInRange("structure.wall_max_behind_fraction", wall_max_behind_fraction, 0.0, 1.0);
+  config::RequireNonNegative("structure.furniture_top_margin_m", furniture_top_margin_m);
+  config::RequireInRange("structure.wall_max_count", wall_max_count, 0, 1000);
 }
 
 bool StructureResult::InsideWalls(const Eigen::Vector3d& p, double margin_m) const {
