@@ -17,15 +17,34 @@ using testing::AnalyticWorld;
 constexpr std::int32_t kFloor = 100, kWall = 101, kBox = 1;
 
 // 4 m x 3 m room, walls 2.4 m high, one box against the +Y wall.
-AnalyticWorld Room() {
+// The floor and the four 2.4 m walls (inner faces x = +-2, y = +-1.5) of a 4 x 3 m room.
+AnalyticWorld EmptyRoom() {
   AnalyticWorld w;
   w.Add(Eigen::Vector3d(-2.1, -1.6, -0.05), Eigen::Vector3d(2.1, 1.6, 0.0), kFloor);
-  w.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);
-  w.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);
-  w.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);
-  w.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);
+  w.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);  // x = -2
+  w.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);    // x = 2
+  w.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);  // y = -1.5
+  w.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);    // y = 1.5
+  return w;
+}
+
+AnalyticWorld Room() {
+  AnalyticWorld w = EmptyRoom();
   w.Add(Eigen::Vector3d(-0.5, 1.0, 0.0), Eigen::Vector3d(0.5, 1.5, 0.8), kBox);
   return w;
+}
+
+// Share of the map elements of ground-truth instance `id` tagged floor or wall; expects at least
+// `min_elements` of them.
+double StructuralShare(const SurfaceMap& map, std::int32_t id, std::size_t min_elements) {
+  std::size_t n = 0, structural = 0;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (map.gt_instance(i) != id) continue;
+    ++n;
+    structural += map.structure(i) != Structure::kNone ? 1 : 0;
+  }
+  EXPECT_GE(n, min_elements) << "elements of instance " << id;
+  return static_cast<double>(structural) / static_cast<double>(std::max<std::size_t>(n, 1));
 }
 
 geometry::Pose3 View(const Eigen::Vector3d& position, double yaw_deg, double pitch_deg) {
@@ -244,12 +263,7 @@ TEST(StructureAndFrontierTest, FloorWallsFoundAndFrontiersVanishWhenTheFloorIsSe
 // the two inner walls of the L are walls although the other arm of the room lies behind their
 // planes, and the wardrobe's big front face is not a wall.
 TEST(StructureTest, LShapedRoomHasInnerWallsAndAWardrobeIsNoWall) {
-  AnalyticWorld room;
-  room.Add(Eigen::Vector3d(-2.1, -1.6, -0.05), Eigen::Vector3d(2.1, 1.6, 0.0), kFloor);
-  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);   // x = -2
-  room.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // x = 2
-  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);   // y = -1.5
-  room.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // y = 1.5
+  AnalyticWorld room = EmptyRoom();
   room.Add(Eigen::Vector3d(1.0, 0.5, 0.0), Eigen::Vector3d(2.0, 1.5, 2.4), kWall);      // the notch
   room.Add(Eigen::Vector3d(-1.0, -1.5, 0.0), Eigen::Vector3d(0.6, -1.0, 2.0), kBox);    // wardrobe
   Rng rng(5);
@@ -282,26 +296,14 @@ TEST(StructureTest, LShapedRoomHasInnerWallsAndAWardrobeIsNoWall) {
     EXPECT_EQ(found[k], 1) << "face n=" << faces[k].normal.transpose() << " d=" << faces[k].offset_m;
   }
   // The wardrobe stays an object.
-  std::size_t box_n = 0, box_structural = 0;
-  for (std::size_t i = 0; i < scan.surface.size(); ++i) {
-    if (scan.surface.gt_instance(i) != kBox) continue;
-    ++box_n;
-    box_structural += scan.surface.structure(i) != Structure::kNone ? 1 : 0;
-  }
-  ASSERT_GT(box_n, 5000u);
-  EXPECT_LT(static_cast<double>(box_structural) / box_n, 0.03);
+  EXPECT_LT(StructuralShare(scan.surface, kBox, 5000), 0.03);
 }
 
 // A 2 m wardrobe in the corner of a 2.4 m room: the wall behind it is seen only beside it, so no
 // wall overlaps its front along the wall; but that wall rises well above it, so its front is
 // furniture, not a wall. With the height rule off (furniture_top_margin_m = 0) it would be a wall.
 TEST(StructureTest, AWardrobeInACornerIsNoWall) {
-  AnalyticWorld room;
-  room.Add(Eigen::Vector3d(-2.1, -1.6, -0.05), Eigen::Vector3d(2.1, 1.6, 0.0), kFloor);
-  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);   // x = -2
-  room.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // x = 2
-  room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);   // y = -1.5
-  room.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);     // y = 1.5
+  AnalyticWorld room = EmptyRoom();
   room.Add(Eigen::Vector3d(-2.0, -1.5, 0.0), Eigen::Vector3d(-0.6, -0.9, 2.0), kBox);   // wardrobe
   Rng rng(7);
   RoomScan scan;
@@ -318,26 +320,16 @@ TEST(StructureTest, AWardrobeInACornerIsNoWall) {
     }
     return false;
   };
-  const auto box_structural_share = [&]() {
-    std::size_t box_n = 0, box_structural = 0;
-    for (std::size_t i = 0; i < scan.surface.size(); ++i) {
-      if (scan.surface.gt_instance(i) != kBox) continue;
-      ++box_n;
-      box_structural += scan.surface.structure(i) != Structure::kNone ? 1 : 0;
-    }
-    EXPECT_GT(box_n, 5000u);
-    return static_cast<double>(box_structural) / std::max<std::size_t>(box_n, 1);
-  };
   StructureOptions overlap_only;
   overlap_only.furniture_top_margin_m = 0.0;
   scan.structure = StructureDetector(overlap_only).Update(&scan.surface);
   EXPECT_TRUE(wardrobe_front_is_wall(scan.structure)) << "the case the height rule is for";
-  EXPECT_GT(box_structural_share(), 0.2);
+  EXPECT_GT(StructuralShare(scan.surface, kBox, 5000), 0.2);
 
   scan.structure = StructureDetector().Update(&scan.surface);
   EXPECT_FALSE(wardrobe_front_is_wall(scan.structure));
   EXPECT_EQ(scan.structure.walls.size(), 4u);
-  EXPECT_LT(box_structural_share(), 0.03);
+  EXPECT_LT(StructuralShare(scan.surface, kBox, 5000), 0.03);
 }
 
 }  // namespace
