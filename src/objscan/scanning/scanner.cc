@@ -1020,8 +1020,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       }
     }
   }
-  // A completed object whose every piece has since become wall or floor is gone from the map: what
-  // it stood for is structure (or reported by the object that now holds its surface).
+  // An object with no element left outside the structure is gone from the map: typically a completed
+  // object whose pieces all became wall later (the object that now holds its surface reports it).
   rec.objects.erase(std::remove_if(rec.objects.begin(), rec.objects.end(),
                                    [](const ObjectRecord& o) { return o.points == 0; }),
                     rec.objects.end());
