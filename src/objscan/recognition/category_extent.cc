@@ -5,7 +5,6 @@
 #include <limits>
 #include <string>
 
-
 #include "objscan/recognition/model_database.h"
 
 namespace objscan::recognition {

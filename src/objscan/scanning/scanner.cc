@@ -391,7 +391,6 @@ struct Scanner::State {
     if (analysis_observer) analysis_observer(*owner);
   }
 
-  // Fragment absorption's view of an object with a best model: the model's points and pose.
   // The database model's name; "" for none (model_id < 0).
   std::string ModelName(int model_id) const {
     return model_id >= 0 ? database.models()[static_cast<std::size_t>(model_id)].name : std::string();
@@ -406,6 +405,7 @@ struct Scanner::State {
     o->objectness = m.objectness;
   }
 
+  // Fragment absorption's view of an object with a best model: the model's points and pose.
   void SetModel(const segmentation::ModelMatch& m, FragmentCandidate* f) const {
     if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return;
     f->model_points = &database.entries()[static_cast<std::size_t>(m.entry_id)].points;
@@ -875,8 +875,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     std::sort(into.begin(), into.end());
   }
   // Pieces too small for their label join a neighbour whose category the union fits
-  // (size_regrouping.h); then a label no model of the object's size has goes, or is replaced by the
-  // best plausible category among the object's full-model matches.
+  // (size_regrouping.h); then a label no model of the object's size has goes (and may be replaced
+  // below, label_replacement.h).
   std::vector<std::vector<Eigen::Vector3f>> object_points(host.size());
   for (std::size_t i = 0; i < host.size(); ++i) {
     auto& into = object_points[static_cast<std::size_t>(host[i])];
@@ -978,10 +978,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     // A window in a wall opening keeps its label: the opening bounds it, and what the object holds
     // beyond it are strips of the wall around the opening.
     if (in_opening[i] && o.category == world::Category::kWindow) continue;
-    const auto plausible = [&](world::Category c) {
-      return recognition::IsPlausibleExtent(extents[i], category_extents.Find(c), size_check);
-    };
-    if (plausible(*o.category)) continue;
+    if (recognition::IsPlausibleExtent(extents[i], category_extents.Find(*o.category), size_check)) continue;
     o.size_rejected_category = o.category;
     taken[i] = o.category;
     o.category.reset();
