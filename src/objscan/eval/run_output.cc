@@ -74,6 +74,16 @@ std::string RunJson(const RunOutputInputs& in) {
     steps.push_back(step);
   }
   j["steps"] = steps;
+  Json walls = Json::array();
+  for (const auto& w : r.structure.walls) {
+    walls.push_back(Json{{"normal_xy", {w.normal_x, w.normal_y}},
+                         {"offset_m", w.offset_m},
+                         {"span_m", {w.span_min_m, w.span_max_m}},
+                         {"z_m", {w.z_min_m, w.z_max_m}},
+                         {"area_m2", w.area_m2}});
+  }
+  j["structure"] = Json{{"floor_height_m", r.structure.floor_height_m ? Json(*r.structure.floor_height_m) : Json(nullptr)},
+                        {"walls", walls}};
   Json objects = Json::array();
   for (const auto& o : r.objects) {
     Json obj{{"id", o.id},

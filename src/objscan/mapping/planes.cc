@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 
 namespace objscan::mapping {
@@ -20,6 +21,7 @@ void StructureOptions::Validate() const {
   config::RequireNonNegative("structure.wall_min_area_m2", wall_min_area_m2);
   config::RequireNonNegative("structure.wall_min_height_m", wall_min_height_m);
   config::RequireInRange("structure.wall_max_behind_fraction", wall_max_behind_fraction, 0.0, 1.0);
+  config::RequireNonNegative("structure.wall_behind_min_depth_m", wall_behind_min_depth_m);
   config::RequireNonNegative("structure.furniture_top_margin_m", furniture_top_margin_m);
   config::RequireInRange("structure.wall_max_count", wall_max_count, 0, 1000);
 }
@@ -75,6 +77,21 @@ constexpr double kTagMaxAngleDeg = 35.0;  // element normal vs plane normal when
 double AngleDiff(double a, double b) {
   double d = std::fmod(std::fabs(a - b), 2.0 * M_PI);
   return d > M_PI ? 2.0 * M_PI - d : d;
+}
+
+// Where plane v lies relative to a near-parallel wall w (normals within 3 angle bins, spans
+// overlapping): w's signed distance of the middle of v's extent (negative: behind w). nullopt when
+// they are not parallel or do not overlap along the wall.
+std::optional<double> PlaneGap(const WallPlane& w, const WallPlane& v, double angle_bin) {
+  if (AngleDiff(std::atan2(w.normal.y(), w.normal.x()), std::atan2(v.normal.y(), v.normal.x())) >= 3 * angle_bin) {
+    return std::nullopt;
+  }
+  const Eigen::Vector3d t_v(-v.normal.y(), v.normal.x(), 0.0);
+  const Eigen::Vector3d mid = v.offset_m * v.normal + 0.5 * (v.span_min_m + v.span_max_m) * t_v;
+  const double s = w.Along(mid);
+  const double half = 0.5 * (v.span_max_m - v.span_min_m);
+  if (s + half < w.span_min_m || s - half > w.span_max_m) return std::nullopt;
+  return w.SignedDistance(mid);
 }
 }  // namespace
 
@@ -254,16 +271,40 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     if (wall.area_m2 < options_.wall_min_area_m2) continue;
     if (wall.z_max_m - wall.z_min_m < options_.wall_min_height_m) continue;
     // A wall bounds the room: almost nothing lies behind it within its extent along the wall
-    // (beyond its ends there may be more room, e.g. the other arm of an L-shaped room).
+    // (beyond its ends there may be more room, e.g. the other arm of an L-shaped room), apart from
+    // what fills its openings a few cm deep.
     std::size_t behind = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Vector3d p = map->position(i).cast<double>();
-      if (wall.SignedDistance(p) >= -2.0 * tol) continue;
+      if (wall.SignedDistance(p) >= -options_.wall_behind_min_depth_m) continue;
       const double s = wall.Along(p);
       if (s > wall.span_min_m + tol && s < wall.span_max_m - tol) ++behind;
     }
     if (static_cast<double>(behind) > options_.wall_max_behind_fraction * static_cast<double>(n)) continue;
-    result.walls.push_back(wall);
+    // A tilted neighbouring bin refines onto a wall already found: the same wall again.
+    bool duplicate = false;
+    for (const WallPlane& w : result.walls) {
+      const std::optional<double> gap = PlaneGap(w, wall, abin);
+      duplicate = duplicate || (gap && std::fabs(*gap) <= 2.0 * tol);
+    }
+    if (!duplicate) result.walls.push_back(wall);
+  }
+
+  // A plane a few cm behind a parallel wall, over its extent, is what fills the wall's openings: a
+  // recessed window pane found on its own, or a plane fitted through pane and wall at a slight tilt.
+  // It is no wall, and it must not make the wall in front of it look like furniture (below).
+  {
+    std::vector<WallPlane> kept;
+    for (const WallPlane& v : result.walls) {
+      bool filling = false;
+      for (const WallPlane& w : result.walls) {
+        if (&w == &v) continue;
+        const std::optional<double> gap = PlaneGap(w, v, abin);
+        filling = filling || (gap && *gap < -2.0 * tol && *gap >= -options_.wall_behind_min_depth_m);
+      }
+      if (!filling) kept.push_back(v);
+    }
+    result.walls.swap(kept);
   }
 
   // A vertical plane with a parallel wall behind it is the face of furniture standing against that

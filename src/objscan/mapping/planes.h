@@ -21,7 +21,11 @@ struct StructureOptions {
   double wall_offset_bin_m = 0.04;
   double wall_min_area_m2 = 0.8;
   double wall_min_height_m = 1.0;       // vertical extent of the wall's elements
-  double wall_max_behind_fraction = 0.03;  // share of all elements farther than tolerance behind it
+  double wall_max_behind_fraction = 0.03;  // share of all elements farther than this behind it:
+  // Shallower than this behind a plane are what fills its openings (a window pane recessed a few cm,
+  // a frame) and noise, which do not count against a wall; 0.06 (2 x plane_tolerance_m) = the old
+  // rule, which rejected walls with a big recessed window.
+  double wall_behind_min_depth_m = 0.12;
   int wall_max_count = 12;
   // A plane in front of a parallel wall whose top this much lower than the wall's is furniture
   // against it (0 = only when the wall behind overlaps it along the wall).
@@ -39,6 +43,7 @@ struct StructureOptions {
     v("wall_min_area_m2", wall_min_area_m2);
     v("wall_min_height_m", wall_min_height_m);
     v("wall_max_behind_fraction", wall_max_behind_fraction);
+    v("wall_behind_min_depth_m", wall_behind_min_depth_m);
     v("wall_max_count", wall_max_count);
     v("furniture_top_margin_m", furniture_top_margin_m);
   }

@@ -332,5 +332,47 @@ TEST(StructureTest, AWardrobeInACornerIsNoWall) {
   EXPECT_LT(StructuralShare(scan.surface, kBox, 5000), 0.03);
 }
 
+// A window pane recessed 5-7 cm into the x = 2 wall (a 1.4 x 1.4 m opening): the wall is found once,
+// on its own plane (not on a plane fitted through wall and pane), and the pane is not tagged wall.
+TEST(StructureTest, ARecessedWindowDoesNotPullTheWallPlane) {
+  constexpr std::int32_t kPane = 2;
+  for (double depth_m : {0.05, 0.06, 0.07}) {
+    SCOPED_TRACE(depth_m);
+    AnalyticWorld room;
+    room.Add(Eigen::Vector3d(-2.1, -1.6, -0.05), Eigen::Vector3d(2.1, 1.6, 0.0), kFloor);
+    room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(-2.0, 1.6, 2.4), kWall);  // x = -2
+    room.Add(Eigen::Vector3d(-2.1, -1.6, 0.0), Eigen::Vector3d(2.1, -1.5, 2.4), kWall);  // y = -1.5
+    room.Add(Eigen::Vector3d(-2.1, 1.5, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);    // y = 1.5
+    // x = 2 around the opening y in [-0.5, 0.9], z in [0.6, 2.0].
+    room.Add(Eigen::Vector3d(2.0, -1.6, 0.0), Eigen::Vector3d(2.1, -0.5, 2.4), kWall);
+    room.Add(Eigen::Vector3d(2.0, 0.9, 0.0), Eigen::Vector3d(2.1, 1.6, 2.4), kWall);
+    room.Add(Eigen::Vector3d(2.0, -0.5, 0.0), Eigen::Vector3d(2.1, 0.9, 0.6), kWall);
+    room.Add(Eigen::Vector3d(2.0, -0.5, 2.0), Eigen::Vector3d(2.1, 0.9, 2.4), kWall);
+    room.Add(Eigen::Vector3d(2.0 + depth_m, -0.5, 0.6), Eigen::Vector3d(2.02 + depth_m, 0.9, 2.0), kPane);
+    Rng rng(11);
+    RoomScan scan;
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(-1.0, 0.0, 1.2), Eigen::Vector3d(0.5, -0.5, 1.2)}) {
+      for (int yaw = 0; yaw < 360; yaw += 45) Observe(room, View(p, yaw, -20), &rng, &scan);
+    }
+    scan.structure = StructureDetector().Update(&scan.surface);
+    int at_wall = 0;
+    for (const WallPlane& w : scan.structure.walls) {
+      const bool facing = w.normal.dot(Eigen::Vector3d(-1, 0, 0)) > 0.99;
+      EXPECT_FALSE(facing && std::fabs(w.offset_m - (-2.0)) >= 0.01)
+          << "a plane off the wall: n=" << w.normal.transpose() << " d=" << w.offset_m;
+      at_wall += facing && std::fabs(w.offset_m - (-2.0)) < 0.01;
+    }
+    EXPECT_EQ(at_wall, 1);
+    EXPECT_EQ(scan.structure.walls.size(), 4u);
+    EXPECT_LT(StructuralShare(scan.surface, kPane, 2000), 0.05);
+    if (depth_m > 0.065) {
+      // The case the opening depth is for: counting the pane as behind the wall rejects the wall.
+      StructureOptions old_rule;
+      old_rule.wall_behind_min_depth_m = 2.0 * old_rule.plane_tolerance_m;
+      EXPECT_EQ(StructureDetector(old_rule).Update(&scan.surface).walls.size(), 3u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace objscan::mapping

@@ -85,6 +85,19 @@ struct TimingTotals {
   double total = 0, sense = 0, fuse = 0, segment = 0, recognize = 0, nbo = 0, nbv = 0, navigate_sim = 0;
 };
 
+// What the robot took for the room's structure at the end of the run (mapping/planes.h).
+struct WallRecord {
+  double normal_x = 1.0, normal_y = 0.0;  // horizontal unit normal, into the room
+  double offset_m = 0.0;                  // the plane n . x = offset_m
+  double span_min_m = 0.0, span_max_m = 0.0;  // extent along (-n.y, n.x)
+  double z_min_m = 0.0, z_max_m = 0.0;
+  double area_m2 = 0.0;
+};
+struct StructureRecord {
+  std::optional<double> floor_height_m;  // nullopt: no floor found
+  std::vector<WallRecord> walls;
+};
+
 struct RunRecord {
   std::string scene;
   std::uint64_t seed = 0;
@@ -92,6 +105,7 @@ struct RunRecord {
   std::vector<StepRecord> steps;
   std::vector<ObjectRecord> objects;
   std::vector<TrajectorySample> trajectory;
+  StructureRecord structure;
   TimingTotals timing_s;
   double travel_m = 0.0;
   int views = 0;

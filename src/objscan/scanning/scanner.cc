@@ -814,6 +814,12 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   s.RefreshNavigation();
   s.Analyze(&final_step);
   RunRecord& rec = s.record;
+  rec.structure = StructureRecord();
+  if (s.structure.has_floor) rec.structure.floor_height_m = s.structure.floor_height_m;
+  for (const mapping::WallPlane& w : s.structure.walls) {
+    rec.structure.walls.push_back({w.normal.x(), w.normal.y(), w.offset_m, w.span_min_m, w.span_max_m, w.z_min_m,
+                                   w.z_max_m, w.area_m2});
+  }
   rec.objects.clear();
   // Fragment absorption candidates, parallel to rec.objects.
   std::vector<FragmentCandidate> candidates;
