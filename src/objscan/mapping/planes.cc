@@ -290,19 +290,20 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     if (!duplicate) result.walls.push_back(wall);
   }
 
-  // A plane a few cm behind a parallel wall, over its extent, is what fills the wall's openings: a
-  // recessed window pane found on its own, or a plane fitted through pane and wall at a slight tilt.
-  // It is no wall, and it must not make the wall in front of it look like furniture (below).
+  // Of two parallel planes a few cm apart over a common extent, the smaller is no wall: a recessed
+  // window pane found on its own (or a plane fitted through pane and wall at a slight tilt) behind
+  // the wall, a curtain in front of it. Left in, the pane would make the wall in front of it look
+  // like furniture (below).
   {
     std::vector<WallPlane> kept;
     for (const WallPlane& v : result.walls) {
-      bool filling = false;
+      bool smaller = false;
       for (const WallPlane& w : result.walls) {
-        if (&w == &v) continue;
+        if (&w == &v || w.area_m2 < v.area_m2) continue;
         const std::optional<double> gap = PlaneGap(w, v, abin);
-        filling = filling || (gap && *gap < -2.0 * tol && *gap >= -options_.wall_behind_min_depth_m);
+        smaller = smaller || (gap && std::fabs(*gap) > 2.0 * tol && std::fabs(*gap) <= options_.wall_behind_min_depth_m);
       }
-      if (!filling) kept.push_back(v);
+      if (!smaller) kept.push_back(v);
     }
     result.walls.swap(kept);
   }
