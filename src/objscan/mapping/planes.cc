@@ -290,20 +290,23 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     if (!duplicate) result.walls.push_back(wall);
   }
 
-  // Of two parallel planes a few cm apart over a common extent, the smaller is no wall: a recessed
-  // window pane found on its own (or a plane fitted through pane and wall at a slight tilt) behind
-  // the wall, a curtain in front of it. Left in, the pane would make the wall in front of it look
-  // like furniture (below).
+  // Of two parallel planes a few cm apart over a common extent, one larger and at least as long as
+  // the other, the other is no wall: a recessed window pane found on its own (or a plane fitted
+  // through pane and wall at a slight tilt) behind the wall, a curtain in front of it. Left in, the
+  // pane would make the wall in front of it look like furniture (below). When neither dominates (a
+  // door in front of a wall mostly hidden by furniture), the furniture rule below decides.
   {
+    const auto span = [](const WallPlane& w) { return w.span_max_m - w.span_min_m; };
     std::vector<WallPlane> kept;
     for (const WallPlane& v : result.walls) {
-      bool smaller = false;
+      bool dominated = false;
       for (const WallPlane& w : result.walls) {
-        if (&w == &v || w.area_m2 < v.area_m2) continue;
+        if (&w == &v || span(w) < span(v) - 2.0 * obin) continue;
+        if (w.area_m2 < v.area_m2 || (w.area_m2 == v.area_m2 && &w > &v)) continue;
         const std::optional<double> gap = PlaneGap(w, v, abin);
-        smaller = smaller || (gap && std::fabs(*gap) > 2.0 * tol && std::fabs(*gap) <= options_.wall_behind_min_depth_m);
+        dominated = dominated || (gap && std::fabs(*gap) > 2.0 * tol && std::fabs(*gap) <= options_.wall_behind_min_depth_m);
       }
-      if (!smaller) kept.push_back(v);
+      if (!dominated) kept.push_back(v);
     }
     result.walls.swap(kept);
   }
@@ -312,6 +315,27 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
   // wall (a wardrobe), not a wall, when the wall overlaps it along the wall or rises clearly above
   // it (the wall behind a wardrobe in a corner is hidden where the two overlap; the step of an
   // L-shaped room is as tall as the wall behind it).
+  // The step of an L-shaped room is told from a wardrobe in a corner by the wall joining it to the
+  // wall behind: perpendicular, at one of its ends, running from its plane back to the other's and
+  // no farther into the room, and rising above what was seen of it (its top may simply not have
+  // been seen yet). A wardrobe's side is no taller than its front; a side wall runs on into the room.
+  const double ends_m = 2.0 * obin;
+  const auto is_room_step = [&](const WallPlane& w, const WallPlane& v) {
+    const double depth = w.offset_m - v.offset_m;
+    for (const WallPlane& c : result.walls) {
+      if (std::fabs(c.normal.dot(w.normal)) > std::sin(2 * abin)) continue;
+      if (c.z_max_m - w.z_max_m <= options_.furniture_top_margin_m) continue;
+      const Eigen::Vector3d t_c(-c.normal.y(), c.normal.x(), 0.0);
+      const Eigen::Vector3d a = c.offset_m * c.normal + c.span_min_m * t_c;
+      const Eigen::Vector3d b = c.offset_m * c.normal + c.span_max_m * t_c;
+      const double along = w.Along(a);
+      if (std::fabs(along - w.span_min_m) > ends_m && std::fabs(along - w.span_max_m) > ends_m) continue;
+      const double near = std::max(w.SignedDistance(a), w.SignedDistance(b));
+      const double far = std::min(w.SignedDistance(a), w.SignedDistance(b));
+      if (near <= ends_m && far <= -depth + ends_m) return true;
+    }
+    return false;
+  };
   std::vector<WallPlane> walls;
   for (const WallPlane& w : result.walls) {
     bool in_front = false;
@@ -319,7 +343,8 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
       if (&v == &w || w.normal.dot(v.normal) < std::cos(2 * abin) || v.offset_m > w.offset_m - 2.0 * tol) continue;
       const double overlap = std::min(w.span_max_m, v.span_max_m) - std::max(w.span_min_m, v.span_min_m);
       if (overlap > 0.5 * (w.span_max_m - w.span_min_m)) in_front = true;
-      if (options_.furniture_top_margin_m > 0.0 && v.z_max_m - w.z_max_m > options_.furniture_top_margin_m) {
+      if (options_.furniture_top_margin_m > 0.0 && v.z_max_m - w.z_max_m > options_.furniture_top_margin_m &&
+          !is_room_step(w, v)) {
         in_front = true;
       }
     }

@@ -25,7 +25,7 @@ struct StructureOptions {
   // Shallower than this behind a plane are what fills its openings (a window pane recessed a few cm,
   // a frame) and noise, which do not count against a wall; 0.06 (2 x plane_tolerance_m) = the old
   // rule, which rejected walls with a big recessed window. Of two parallel planes closer than this
-  // (and farther apart than 2 x plane_tolerance_m), only the larger can be a wall.
+  // (and farther apart than 2 x plane_tolerance_m), one larger and as long, only that one is a wall.
   double wall_behind_min_depth_m = 0.12;
   int wall_max_count = 12;
   // A plane in front of a parallel wall whose top this much lower than the wall's is furniture

@@ -332,6 +332,32 @@ TEST(StructureTest, AWardrobeInACornerIsNoWall) {
   EXPECT_LT(StructuralShare(scan.surface, kBox, 5000), 0.03);
 }
 
+// An L-shaped room (a block fills x in [0.5, 2], y in [0, 1.5]) whose step face y = 0 has been seen
+// only from close by, looking down, so up to about 1.3 m, while the wall 1.5 m behind it (y = 1.5)
+// and the other step face x = 0.5 joining the two were seen to the top. The step is a wall, not a
+// wardrobe front: the full-height wall joining it to the wall behind runs no farther into the room.
+TEST(StructureTest, TheStepOfAnLShapedRoomSeenOnlyLowIsAWall) {
+  AnalyticWorld room = EmptyRoom();
+  room.Add(Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d(2.0, 1.5, 2.4), kWall);
+  Rng rng(13);
+  RoomScan scan;
+  // Level views from high up in the open arm of the L, which cannot see the y = 0 face.
+  for (int yaw = 0; yaw < 360; yaw += 45) Observe(room, View(Eigen::Vector3d(-1.5, 0.75, 1.8), yaw, 0), &rng, &scan);
+  Observe(room, View(Eigen::Vector3d(1.2, -1.2, 1.4), 90, -30), &rng, &scan);
+  Observe(room, View(Eigen::Vector3d(-1.0, -1.0, 1.2), 270, -30), &rng, &scan);
+  scan.structure = StructureDetector().Update(&scan.surface);
+  bool step = false, joint = false;
+  for (const WallPlane& w : scan.structure.walls) {
+    if (w.normal.dot(Eigen::Vector3d(0, -1, 0)) > 0.999 && std::fabs(w.offset_m) < 0.02) {
+      step = true;
+      EXPECT_LT(w.z_max_m, 1.6) << "the step is meant to be seen low only";
+    }
+    joint = joint || (w.normal.dot(Eigen::Vector3d(-1, 0, 0)) > 0.999 && std::fabs(w.offset_m - (-0.5)) < 0.02);
+  }
+  EXPECT_TRUE(step);
+  EXPECT_TRUE(joint);
+}
+
 // A window pane recessed 5-7 cm into the x = 2 wall (a 1.4 x 1.4 m opening): the wall is found once,
 // on its own plane (not on a plane fitted through wall and pane), and the pane is not tagged wall.
 TEST(StructureTest, ARecessedWindowDoesNotPullTheWallPlane) {
@@ -372,6 +398,30 @@ TEST(StructureTest, ARecessedWindowDoesNotPullTheWallPlane) {
       EXPECT_EQ(StructureDetector(old_rule).Update(&scan.surface).walls.size(), 3u);
     }
   }
+}
+
+// A curtain 8 cm in front of the y = 1.5 wall, 2.2 m wide and 2.3 m tall: the wall stays the wall
+// (the smaller plane a few cm from it goes, whichever side it is on) and the curtain is no structure.
+TEST(StructureTest, ACurtainInFrontOfAWallIsNoWall) {
+  constexpr std::int32_t kCurtain = 3;
+  AnalyticWorld room = EmptyRoom();
+  room.Add(Eigen::Vector3d(-1.4, 1.40, 0.05), Eigen::Vector3d(0.8, 1.42, 2.35), kCurtain);
+  Rng rng(17);
+  RoomScan scan;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-1.0, -0.5, 1.2), Eigen::Vector3d(1.0, -0.8, 1.2)}) {
+    for (int yaw = 0; yaw < 360; yaw += 45) Observe(room, View(p, yaw, -15), &rng, &scan);
+  }
+  scan.structure = StructureDetector().Update(&scan.surface);
+  int at_wall = 0, at_curtain = 0;
+  for (const WallPlane& w : scan.structure.walls) {
+    if (w.normal.dot(Eigen::Vector3d(0, -1, 0)) < 0.99) continue;
+    at_wall += std::fabs(w.offset_m - (-1.5)) < 0.02;
+    at_curtain += std::fabs(w.offset_m - (-1.4)) < 0.03;
+  }
+  EXPECT_EQ(at_wall, 1);
+  EXPECT_EQ(at_curtain, 0);
+  EXPECT_EQ(scan.structure.walls.size(), 4u);
+  EXPECT_LT(StructuralShare(scan.surface, kCurtain, 5000), 0.05);
 }
 
 }  // namespace
