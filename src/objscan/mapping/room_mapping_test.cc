@@ -424,5 +424,40 @@ TEST(StructureTest, ACurtainInFrontOfAWallIsNoWall) {
   EXPECT_LT(StructuralShare(scan.surface, kCurtain, 5000), 0.05);
 }
 
+// A long room seen from afar with a noisy sensor (sigma 2 mm + 2.5 mm/m^2): bins a few degrees off a
+// wall collect enough votes to be evaluated, and their plane fits converge onto that wall. Each wall
+// is listed once all the same.
+TEST(StructureTest, EachWallIsFoundOnceUnderFarRangeNoise) {
+  AnalyticWorld room;
+  room.Add(Eigen::Vector3d(-3.1, -1.6, -0.05), Eigen::Vector3d(3.1, 1.6, 0.0), kFloor);
+  room.Add(Eigen::Vector3d(-3.1, -1.6, 0.0), Eigen::Vector3d(-3.0, 1.6, 2.6), kWall);
+  room.Add(Eigen::Vector3d(3.0, -1.6, 0.0), Eigen::Vector3d(3.1, 1.6, 2.6), kWall);
+  room.Add(Eigen::Vector3d(-3.1, -1.6, 0.0), Eigen::Vector3d(3.1, -1.5, 2.6), kWall);
+  room.Add(Eigen::Vector3d(-3.1, 1.5, 0.0), Eigen::Vector3d(3.1, 1.6, 2.6), kWall);
+  Rng rng(19);
+  SurfaceMap surface;
+  sim::CameraIntrinsics half;
+  half.width_px = 320;
+  half.height_px = 240;
+  half.fx_px = half.fy_px = 262.5;
+  half.cx_px = 159.5;
+  half.cy_px = 119.5;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-2.0, 0.0, 1.3), Eigen::Vector3d(2.0, 0.0, 1.3)}) {
+    for (int yaw = 0; yaw < 360; yaw += 30) {
+      surface.Integrate(room.Render(View(p, yaw, -10), &rng, 0.002, 0.0025, half));
+    }
+  }
+  const StructureResult structure = StructureDetector().Update(&surface);
+  EXPECT_EQ(structure.walls.size(), 4u);
+  for (std::size_t i = 0; i < structure.walls.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const WallPlane& a = structure.walls[i];
+      const WallPlane& b = structure.walls[j];
+      EXPECT_FALSE(a.normal.dot(b.normal) > 0.99 && std::fabs(a.offset_m - b.offset_m) < 0.1)
+          << "twice: n=" << a.normal.transpose() << " d=" << a.offset_m;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace objscan::mapping
