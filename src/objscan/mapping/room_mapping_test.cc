@@ -188,15 +188,16 @@ struct RoomScan {
   StructureResult structure;
 };
 
-// Half-resolution frames keep the test fast.
-void Observe(const AnalyticWorld& room, const geometry::Pose3& T, Rng* rng, RoomScan* scan) {
+// Half-resolution frames keep the test fast. Depth noise sigma(z) = sigma_base_m + sigma_quadratic * z^2.
+void Observe(const AnalyticWorld& room, const geometry::Pose3& T, Rng* rng, RoomScan* scan,
+             double sigma_base_m = 0.001, double sigma_quadratic_per_m = 0.0015) {
   sim::CameraIntrinsics half;
   half.width_px = 320;
   half.height_px = 240;
   half.fx_px = half.fy_px = 262.5;
   half.cx_px = 159.5;
   half.cy_px = 119.5;
-  const sim::DepthFrame frame = room.Render(T, rng, 0.001, 0.0015, half);
+  const sim::DepthFrame frame = room.Render(T, rng, sigma_base_m, sigma_quadratic_per_m, half);
   scan->surface.Integrate(frame);
   scan->occupancy.Integrate(frame);
 }
@@ -435,19 +436,11 @@ TEST(StructureTest, EachWallIsFoundOnceUnderFarRangeNoise) {
   room.Add(Eigen::Vector3d(-3.1, -1.6, 0.0), Eigen::Vector3d(3.1, -1.5, 2.6), kWall);
   room.Add(Eigen::Vector3d(-3.1, 1.5, 0.0), Eigen::Vector3d(3.1, 1.6, 2.6), kWall);
   Rng rng(19);
-  SurfaceMap surface;
-  sim::CameraIntrinsics half;
-  half.width_px = 320;
-  half.height_px = 240;
-  half.fx_px = half.fy_px = 262.5;
-  half.cx_px = 159.5;
-  half.cy_px = 119.5;
+  RoomScan scan;
   for (const Eigen::Vector3d& p : {Eigen::Vector3d(-2.0, 0.0, 1.3), Eigen::Vector3d(2.0, 0.0, 1.3)}) {
-    for (int yaw = 0; yaw < 360; yaw += 30) {
-      surface.Integrate(room.Render(View(p, yaw, -10), &rng, 0.002, 0.0025, half));
-    }
+    for (int yaw = 0; yaw < 360; yaw += 30) Observe(room, View(p, yaw, -10), &rng, &scan, 0.002, 0.0025);
   }
-  const StructureResult structure = StructureDetector().Update(&surface);
+  const StructureResult structure = StructureDetector().Update(&scan.surface);
   EXPECT_EQ(structure.walls.size(), 4u);
   for (std::size_t i = 0; i < structure.walls.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
