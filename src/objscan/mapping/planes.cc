@@ -86,8 +86,7 @@ std::optional<double> PlaneGap(const WallPlane& w, const WallPlane& v, double an
   if (AngleDiff(std::atan2(w.normal.y(), w.normal.x()), std::atan2(v.normal.y(), v.normal.x())) >= 3 * angle_bin) {
     return std::nullopt;
   }
-  const Eigen::Vector3d t_v(-v.normal.y(), v.normal.x(), 0.0);
-  const Eigen::Vector3d mid = v.offset_m * v.normal + 0.5 * (v.span_min_m + v.span_max_m) * t_v;
+  const Eigen::Vector3d mid = v.PointAt(0.5 * (v.span_min_m + v.span_max_m));
   const double s = w.Along(mid);
   const double half = 0.5 * (v.span_max_m - v.span_min_m);
   if (s + half < w.span_min_m || s - half > w.span_max_m) return std::nullopt;
@@ -270,6 +269,14 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     wall.area_m2 = inliers * voxel_area;
     if (wall.area_m2 < options_.wall_min_area_m2) continue;
     if (wall.z_max_m - wall.z_min_m < options_.wall_min_height_m) continue;
+    // A tilted neighbouring bin refines onto a wall already found: the same wall again (checked
+    // before the scan of every element below).
+    bool duplicate = false;
+    for (const WallPlane& w : result.walls) {
+      const std::optional<double> gap = PlaneGap(w, wall, abin);
+      duplicate = duplicate || (gap && std::fabs(*gap) <= 2.0 * tol);
+    }
+    if (duplicate) continue;
     // A wall bounds the room: almost nothing lies behind it within its extent along the wall
     // (beyond its ends there may be more room, e.g. the other arm of an L-shaped room), apart from
     // what fills its openings a few cm deep.
@@ -281,13 +288,7 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
       if (s > wall.span_min_m + tol && s < wall.span_max_m - tol) ++behind;
     }
     if (static_cast<double>(behind) > options_.wall_max_behind_fraction * static_cast<double>(n)) continue;
-    // A tilted neighbouring bin refines onto a wall already found: the same wall again.
-    bool duplicate = false;
-    for (const WallPlane& w : result.walls) {
-      const std::optional<double> gap = PlaneGap(w, wall, abin);
-      duplicate = duplicate || (gap && std::fabs(*gap) <= 2.0 * tol);
-    }
-    if (!duplicate) result.walls.push_back(wall);
+    result.walls.push_back(wall);
   }
 
   // Of two parallel planes a few cm apart over a common extent, one larger and at least as long as
@@ -304,7 +305,8 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
         if (&w == &v || span(w) < span(v) - 2.0 * obin) continue;
         if (w.area_m2 < v.area_m2 || (w.area_m2 == v.area_m2 && &w > &v)) continue;
         const std::optional<double> gap = PlaneGap(w, v, abin);
-        dominated = dominated || (gap && std::fabs(*gap) > 2.0 * tol && std::fabs(*gap) <= options_.wall_behind_min_depth_m);
+        dominated =
+            dominated || (gap && std::fabs(*gap) > 2.0 * tol && std::fabs(*gap) <= options_.wall_behind_min_depth_m);
       }
       if (!dominated) kept.push_back(v);
     }
@@ -313,11 +315,10 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
 
   // A vertical plane with a parallel wall behind it is the face of furniture standing against that
   // wall (a wardrobe), not a wall, when the wall overlaps it along the wall or rises clearly above
-  // it (the wall behind a wardrobe in a corner is hidden where the two overlap; the step of an
-  // L-shaped room is as tall as the wall behind it).
-  // The step of an L-shaped room is told from a wardrobe in a corner by the wall joining it to the
-  // wall behind: perpendicular, at one of its ends, running from its plane back to the other's and
-  // no farther into the room, and rising above what was seen of it (its top may simply not have
+  // it (the wall behind a wardrobe in a corner is hidden where the two overlap), unless it is the
+  // step of an L-shaped room. The step is told from a wardrobe in a corner by the wall joining it to
+  // the wall behind: perpendicular, at one of its ends, running from its plane back to the other's
+  // and no farther into the room, and rising above what was seen of it (its top may simply not have
   // been seen yet). A wardrobe's side is no taller than its front; a side wall runs on into the room.
   const double ends_m = 2.0 * obin;
   const auto is_room_step = [&](const WallPlane& w, const WallPlane& v) {
@@ -325,9 +326,8 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     for (const WallPlane& c : result.walls) {
       if (std::fabs(c.normal.dot(w.normal)) > std::sin(2 * abin)) continue;
       if (c.z_max_m - w.z_max_m <= options_.furniture_top_margin_m) continue;
-      const Eigen::Vector3d t_c(-c.normal.y(), c.normal.x(), 0.0);
-      const Eigen::Vector3d a = c.offset_m * c.normal + c.span_min_m * t_c;
-      const Eigen::Vector3d b = c.offset_m * c.normal + c.span_max_m * t_c;
+      const Eigen::Vector3d a = c.PointAt(c.span_min_m);
+      const Eigen::Vector3d b = c.PointAt(c.span_max_m);
       const double along = w.Along(a);
       if (std::fabs(along - w.span_min_m) > ends_m && std::fabs(along - w.span_max_m) > ends_m) continue;
       const double near = std::max(w.SignedDistance(a), w.SignedDistance(b));

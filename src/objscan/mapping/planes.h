@@ -21,7 +21,8 @@ struct StructureOptions {
   double wall_offset_bin_m = 0.04;
   double wall_min_area_m2 = 0.8;
   double wall_min_height_m = 1.0;       // vertical extent of the wall's elements
-  double wall_max_behind_fraction = 0.03;  // share of all elements farther than this behind it:
+  // A wall has at most this share of all elements more than wall_behind_min_depth_m behind it.
+  double wall_max_behind_fraction = 0.03;
   // Shallower than this behind a plane are what fills its openings (a window pane recessed a few cm,
   // a frame) and noise, which do not count against a wall; 0.06 (2 x plane_tolerance_m) = the old
   // rule, which rejected walls with a big recessed window. Of two parallel planes closer than this
@@ -62,6 +63,10 @@ struct WallPlane {
   double SignedDistance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset_m; }
   // Position of p along the wall direction t = (-n.y, n.x, 0) (compare with the span).
   double Along(const Eigen::Vector3d& p) const { return -normal.y() * p.x() + normal.x() * p.y(); }
+  // The point of the plane at z = 0 whose position along the wall is along_m (Along's inverse).
+  Eigen::Vector3d PointAt(double along_m) const {
+    return offset_m * normal + along_m * Eigen::Vector3d(-normal.y(), normal.x(), 0.0);
+  }
 };
 
 struct StructureResult {
