@@ -38,8 +38,11 @@ const std::array<Eigen::Vector3i, 6> kFaceNeighbours = {Eigen::Vector3i(1, 0, 0)
 }  // namespace
 
 std::vector<char> ExposedVoxels(const world::Scene& scene, const std::vector<Eigen::Vector3d>& voxel_centers_world,
-                                double voxel_m, const Eigen::Vector3d& seed_world) {
+                                double voxel_m, const Eigen::Vector3d& seed_world, const CameraHeightBand& band) {
   if (!(voxel_m > 0.0)) throw InputError("ExposedVoxels: voxel_m must be positive");
+  if (std::isnan(band.min_height_m) || std::isnan(band.max_height_m) || band.min_height_m > band.max_height_m) {
+    throw InputError("ExposedVoxels: the camera height band must be an interval");
+  }
   std::vector<char> exposed(voxel_centers_world.size(), 0);
   const geometry::Aabb3 bounds = scene.Bounds();
   if (bounds.Empty()) return exposed;
@@ -114,11 +117,20 @@ std::vector<char> ExposedVoxels(const world::Scene& scene, const std::vector<Eig
     }
   }
 
+  // The band in world heights, and the voxel layers whose lower (upper) faces a camera in it can see.
+  const double floor_top_m = floors.Empty() ? 0.0 : floors.max_m.z();
+  const double min_camera_z_m = floor_top_m + band.min_height_m;
+  const double max_camera_z_m = floor_top_m + band.max_height_m;
+  auto face_visible = [&](const Eigen::Vector3i& k, const Eigen::Vector3i& d) {
+    if (d.z() < 0) return (k.z() + 1) * voxel_m > min_camera_z_m;
+    if (d.z() > 0) return k.z() * voxel_m < max_camera_z_m;
+    return true;
+  };
   for (std::size_t i = 0; i < voxel_centers_world.size(); ++i) {
     const Eigen::Vector3i k = grid.KeyOf(voxel_centers_world[i]);
     for (const auto& d : kFaceNeighbours) {
       const Eigen::Vector3i n = k + d;
-      if (grid.Inside(n) && state[grid.Index(n)] == 2) {
+      if (grid.Inside(n) && state[grid.Index(n)] == 2 && face_visible(k, d)) {
         exposed[i] = 1;
         break;
       }

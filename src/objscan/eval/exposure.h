@@ -5,6 +5,7 @@
 // rate well below 1 whatever the robot does.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,7 +44,19 @@ void SampleTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 // the walls' top (when the scene has floors and walls); 0 otherwise. `seed_world` is a point of the
 // room's free space (e.g. the robot's first camera position); when its voxel is not empty, the
 // nearest empty voxel within two voxels is used. All 0 when there is none.
+//
+// With a camera height band (heights above the floor's top, or above z = 0 without a floor), a
+// voxel exposed only through its lower face counts when part of it lies above the band's lowest
+// camera (a face seen from below needs a camera below it: the underside of a bed frame 12 cm above
+// the floor is hidden from a camera no lower than 30 cm), and one exposed only through its upper
+// face when part of it lies below the band's highest camera (the top of a 2 m wardrobe is hidden
+// from a camera no higher than 1.8 m). Side faces count at any height. The default band holds every
+// height.
+struct CameraHeightBand {
+  double min_height_m = -std::numeric_limits<double>::infinity();
+  double max_height_m = std::numeric_limits<double>::infinity();
+};
 std::vector<char> ExposedVoxels(const world::Scene& scene, const std::vector<Eigen::Vector3d>& voxel_centers_world,
-                                double voxel_m, const Eigen::Vector3d& seed_world);
+                                double voxel_m, const Eigen::Vector3d& seed_world, const CameraHeightBand& band = {});
 
 }  // namespace objscan::eval

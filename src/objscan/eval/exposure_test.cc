@@ -89,8 +89,25 @@ TEST(ExposedVoxels, NoVoxelIsExposedFromASeedBuriedInGeometry) {
   EXPECT_EQ(exposed[0], 0);
 }
 
-TEST(ExposedVoxels, RejectsANonPositiveVoxelSize) {
+TEST(ExposedVoxels, UndersidesBelowAndTopsAboveTheCameraHeightBandAreHidden) {
+  world::Scene scene = Room(3.0, 3.0);
+  // A slab with 25 cm of air under it (its underside in voxel layer 2, z in [0.2, 0.3]) and a
+  // 2.05 m tall box (its top in layer 20, z in [2.0, 2.1]).
+  scene.Add(BoxObject({1.05, 1.05, 0.25}, {1.65, 1.65, 0.55}));
+  scene.Add(BoxObject({2.05, 2.05, 0.05}, {2.65, 2.65, 2.05}));
+  const std::vector<Eigen::Vector3d> probes = {Center(13, 13, 2), Center(23, 23, 20), Center(20, 23, 10)};
+  const Eigen::Vector3d seed(0.5, 0.5, 1.2);
+  // Any camera height: all three are exposed.
+  EXPECT_EQ(ExposedVoxels(scene, probes, kVoxel_m, seed), (std::vector<char>{1, 1, 1}));
+  // Cameras from 0.5 to 1.8 m: the underside needs a camera below 0.3 m, the top one above 2.0 m.
+  EXPECT_EQ(ExposedVoxels(scene, probes, kVoxel_m, seed, {0.5, 1.8}), (std::vector<char>{0, 0, 1}));
+  // Cameras from 0.2 to 2.2 m see both.
+  EXPECT_EQ(ExposedVoxels(scene, probes, kVoxel_m, seed, {0.2, 2.2}), (std::vector<char>{1, 1, 1}));
+}
+
+TEST(ExposedVoxels, RejectsANonPositiveVoxelSizeAndAnEmptyBand) {
   EXPECT_THROW(ExposedVoxels(RoomWithBox(), {}, 0.0, Eigen::Vector3d::Zero()), InputError);
+  EXPECT_THROW(ExposedVoxels(RoomWithBox(), {}, 0.1, Eigen::Vector3d::Zero(), {1.0, 0.5}), InputError);
 }
 
 }  // namespace

@@ -122,7 +122,12 @@ struct RunEvaluator::Impl {
     std::vector<Eigen::Vector3d> centers;
     centers.reserve(surface_voxels.size());
     for (const auto& v : surface_voxels) centers.push_back(v.center_world);
-    const std::vector<char> exposed = ExposedVoxels(scene, centers, voxel_m, seed_world);
+    CameraHeightBand band;
+    if (config.eval.coverage_robot_camera_heights) {
+      band.min_height_m = config.robot.min_camera_height_m;
+      band.max_height_m = config.robot.max_camera_height_m;
+    }
+    const std::vector<char> exposed = ExposedVoxels(scene, centers, voxel_m, seed_world, band);
     std::vector<SurfaceVoxel> kept;
     for (std::size_t i = 0; i < surface_voxels.size(); ++i) {
       if (exposed[i]) kept.push_back(surface_voxels[i]);
@@ -275,6 +280,22 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
       }
       o.matched = matched.count(g.instance_id) > 0;
       out.instances.push_back(o);
+    }
+    std::unordered_map<int, world::Category> category_of;
+    for (const auto& g : truth) category_of[g.instance_id] = g.category;
+    const auto& voxels = coverage.voxels();
+    const auto& quality = coverage.best_quality();
+    out.coverage_voxels.reserve(voxels.size());
+    for (std::size_t i = 0; i < voxels.size(); ++i) {
+      CoverageVoxelOutcome v;
+      v.center_world = voxels[i].center_world.cast<float>();
+      v.normal_world = voxels[i].normal_world.cast<float>();
+      v.instance = voxels[i].instance;
+      auto c = category_of.find(v.instance);
+      if (c != category_of.end()) v.category = c->second;
+      v.visible = quality[i] >= 0.0;
+      v.detected = matched.count(v.instance) > 0;
+      out.coverage_voxels.push_back(v);
     }
   }
   CoverageAccumulator curve(coverage.voxels(), m.Options());

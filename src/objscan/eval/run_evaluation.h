@@ -29,6 +29,17 @@ struct InstanceOutcome {
   bool matched = false;      // a true positive matched it
 };
 
+// One voxel of V_S after the run: where it is, whose it is, whether the robot saw it within range
+// (delta_vis) and whether its instance was recognised (delta_detect). Written to coverage.ply.
+struct CoverageVoxelOutcome {
+  Eigen::Vector3f center_world = Eigen::Vector3f::Zero();
+  Eigen::Vector3f normal_world = Eigen::Vector3f::UnitZ();
+  int instance = world::kNoInstance;
+  world::Category category = world::Category::kOther;
+  bool visible = false;
+  bool detected = false;
+};
+
 struct RunMetrics {
   double recall = 0.0, precision = 0.0;
   double recall_floor = 0.0, precision_floor = 0.0;
@@ -38,6 +49,7 @@ struct RunMetrics {
   // delta_vis alone: the share of V_S seen within range, whether or not its object was recognised.
   double coverage_visible_rate = 0.0;
   std::vector<InstanceOutcome> instances;
+  std::vector<CoverageVoxelOutcome> coverage_voxels;  // every voxel of V_S
   double travel_m = 0.0;
   int views = 0, nbo_count = 0;
   double nbv_per_object = 0.0;

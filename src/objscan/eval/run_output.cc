@@ -301,6 +301,30 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   models.int_properties.emplace_back("category_id", model_category);
   io::WritePly((dir / "models.ply").string(), models);
 
+  // coverage.ply (ground truth known): every voxel of V_S, coloured green when it counts for the
+  // coverage rate, orange when seen on an object that was not recognised, red when never seen
+  // within range, so what the robot missed can be looked at.
+  if (in.metrics) {
+    io::PlyData coverage;
+    std::vector<std::int32_t> instance, category, visible, detected;
+    for (const auto& v : in.metrics->coverage_voxels) {
+      coverage.points.push_back(v.center_world);
+      coverage.normals.push_back(v.normal_world);
+      coverage.colors.push_back(!v.visible   ? std::array<std::uint8_t, 3>{220, 40, 40}
+                                : v.detected ? std::array<std::uint8_t, 3>{40, 180, 60}
+                                             : std::array<std::uint8_t, 3>{240, 150, 30});
+      instance.push_back(v.instance);
+      category.push_back(world::CategoryId(v.category));
+      visible.push_back(v.visible ? 1 : 0);
+      detected.push_back(v.detected ? 1 : 0);
+    }
+    coverage.int_properties.emplace_back("instance", instance);
+    coverage.int_properties.emplace_back("category_id", category);
+    coverage.int_properties.emplace_back("visible", visible);
+    coverage.int_properties.emplace_back("detected", detected);
+    io::WritePly((dir / "coverage.ply").string(), coverage);
+  }
+
   // trajectory.csv
   std::ostringstream csv;
   csv << "step,time_s,base_x_m,base_y_m,base_theta_deg,camera_x_m,camera_y_m,camera_z_m,camera_yaw_deg,camera_pitch_deg,view\n";

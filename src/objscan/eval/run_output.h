@@ -1,6 +1,7 @@
 #pragma once
 // Writes the output folder of `objscan run` (DESIGN.md): run.json, scene.ply, models.ply,
-// trajectory.csv and topview.png. Each file is written atomically.
+// trajectory.csv and topview.png; with ground truth also coverage.ply (the voxels of V_S coloured by
+// covered / seen but not recognised / never seen). Each file is written atomically.
 #include <string>
 
 #include "objscan/eval/run_evaluation.h"

@@ -32,6 +32,10 @@ struct EvaluationOptions {
   // V_S holds only the surface voxels next to empty space joined to the robot's start (false: every
   // voxel a triangle touches, also under objects, against walls and inside closed furniture).
   bool coverage_exposed_only = true;
+  // ... and of those, only voxels whose exposed face a camera at the robot's camera heights
+  // (robot.min_camera_height_m to max_camera_height_m) can face: no undersides below the lowest
+  // camera, no tops above the highest (eval/exposure.h). false: faces at any height count.
+  bool coverage_robot_camera_heights = true;
   // An incomplete object counts as a recognition at termination when its objectness reaches this
   // (complete objects always count).
   double recognized_min_objectness = 0.5;
@@ -42,6 +46,7 @@ struct EvaluationOptions {
     v("coverage_theta_t_rad", coverage_theta_t_rad);
     v("coverage_voxel_size_m", coverage_voxel_size_m);
     v("coverage_exposed_only", coverage_exposed_only);
+    v("coverage_robot_camera_heights", coverage_robot_camera_heights);
     v("recognized_min_objectness", recognized_min_objectness);
   }
   void Validate() const {

@@ -1,0 +1,94 @@
+// End-to-end test of `objscan run`: a short scan of a procedural room with a small database writes
+// every file of the output folder, its coverage.ply agrees with run.json's metrics, and the same
+// seed gives the same run.json apart from timings.
+#include <gtest/gtest.h>
+
+#include "run_command.h"
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "objscan/io/ply.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using Result = objscan::testing::CommandResult;
+
+Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand(OBJSCAN_BINARY, args); }
+
+nlohmann::json ReadJson(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return nlohmann::json::parse(s.str());
+}
+
+// run.json without what depends on the machine's speed.
+nlohmann::json WithoutTimings(nlohmann::json j) {
+  j.erase("timing_s");
+  for (auto& step : j["steps"]) step.erase("timing_ms");
+  return j;
+}
+
+TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
+  const fs::path dir = fs::temp_directory_path() / ("objscan_run_e2e_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // One procedural model per category keeps the database build short.
+  const std::string db = (dir / "small.db").string();
+  const Result build = RunObjscan("db build --models procedural --variants 1 --out " + db);
+  ASSERT_EQ(build.exit_code, 0) << build.err;
+
+  const std::string common = "run --scene procedural:bathroom:1 --db " + db + " --seed 3 --set scanner.max_steps=8 --out ";
+  const Result a = RunObjscan(common + (dir / "a").string());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const Result b = RunObjscan(common + (dir / "b").string());
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+
+  for (const char* file : {"run.json", "scene.ply", "models.ply", "trajectory.csv", "topview.png", "coverage.ply"}) {
+    EXPECT_TRUE(fs::exists(dir / "a" / file)) << file;
+  }
+  const nlohmann::json run = ReadJson(dir / "a" / "run.json");
+  const std::string terminated = run["terminated"];
+  EXPECT_TRUE(terminated == "done" || terminated == "max_steps") << terminated;
+  EXPECT_LE(run["steps"].size(), 8u);
+  EXPECT_GT(run["metrics"]["views"].get<int>(), 0);
+  EXPECT_EQ(WithoutTimings(run), WithoutTimings(ReadJson(dir / "b" / "run.json")));
+
+  // coverage.ply holds V_S: as many voxels as the instances list, as many visible ones as the
+  // visible rate says, and the covered ones (visible and detected) give the coverage rate.
+  const objscan::io::PlyData coverage = objscan::io::ReadPly((dir / "a" / "coverage.ply").string());
+  long surface = 0, visible_listed = 0;
+  for (const auto& i : run["metrics"]["instances"]) {
+    surface += i["surface_voxels"].get<long>();
+    visible_listed += i["visible_voxels"].get<long>();
+  }
+  ASSERT_EQ(static_cast<long>(coverage.points.size()), surface);
+  ASSERT_GT(surface, 0);
+  const std::vector<std::int32_t>* visible = nullptr;
+  const std::vector<std::int32_t>* detected = nullptr;
+  for (const auto& [name, values] : coverage.int_properties) {
+    if (name == "visible") visible = &values;
+    if (name == "detected") detected = &values;
+  }
+  ASSERT_NE(visible, nullptr);
+  ASSERT_NE(detected, nullptr);
+  long num_visible = 0, num_covered = 0;
+  for (std::size_t v = 0; v < visible->size(); ++v) {
+    num_visible += (*visible)[v];
+    num_covered += (*visible)[v] && (*detected)[v];
+  }
+  EXPECT_EQ(num_visible, visible_listed);
+  EXPECT_NEAR(static_cast<double>(num_visible) / surface, run["metrics"]["coverage_visible_rate"].get<double>(), 1e-9);
+  EXPECT_NEAR(static_cast<double>(num_covered) / surface, run["metrics"]["coverage_rate"].get<double>(), 1e-9);
+  fs::remove_all(dir);
+}
+
+}  // namespace
