@@ -74,20 +74,29 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
   ASSERT_GT(surface, 0);
   const std::vector<std::int32_t>* visible = nullptr;
   const std::vector<std::int32_t>* detected = nullptr;
+  const std::vector<std::int32_t>* reported = nullptr;
   for (const auto& [name, values] : coverage.int_properties) {
     if (name == "visible") visible = &values;
     if (name == "detected") detected = &values;
+    if (name == "reported") reported = &values;
   }
   ASSERT_NE(visible, nullptr);
   ASSERT_NE(detected, nullptr);
-  long num_visible = 0, num_covered = 0;
+  ASSERT_NE(reported, nullptr);
+  long num_visible = 0, num_covered = 0, num_covered_reported = 0;
   for (std::size_t v = 0; v < visible->size(); ++v) {
     num_visible += (*visible)[v];
     num_covered += (*visible)[v] && (*detected)[v];
+    num_covered_reported += (*visible)[v] && (*reported)[v];
+    // A matched instance is the majority instance of a reported object.
+    EXPECT_TRUE(!(*detected)[v] || (*reported)[v]) << "voxel " << v;
   }
+  const nlohmann::json& metrics = run["metrics"];
   EXPECT_EQ(num_visible, visible_listed);
-  EXPECT_NEAR(static_cast<double>(num_visible) / surface, run["metrics"]["coverage_visible_rate"].get<double>(), 1e-9);
-  EXPECT_NEAR(static_cast<double>(num_covered) / surface, run["metrics"]["coverage_rate"].get<double>(), 1e-9);
+  EXPECT_NEAR(static_cast<double>(num_visible) / surface, metrics["coverage_visible_rate"].get<double>(), 1e-9);
+  EXPECT_NEAR(static_cast<double>(num_covered) / surface, metrics["coverage_rate"].get<double>(), 1e-9);
+  EXPECT_NEAR(static_cast<double>(num_covered_reported) / surface, metrics["coverage_detected_rate"].get<double>(),
+              1e-9);
   fs::remove_all(dir);
 }
 

@@ -263,6 +263,12 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   out.coverage_rate = cov.rate;
   out.coverage_quality = cov.quality;
   out.coverage_visible_rate = cov.num_voxels > 0 ? static_cast<double>(cov.num_visible) / cov.num_voxels : 0.0;
+  std::vector<int> reported;
+  for (const auto& o : record.objects) {
+    if (o.gt_instance > 0) reported.push_back(o.gt_instance);
+  }
+  out.coverage_detected_rate = coverage.Result(reported).rate;
+  const std::set<int> reported_set(reported.begin(), reported.end());
   {
     std::unordered_map<int, InstanceCoverage> seen_of;
     for (const auto& c : coverage.PerInstance()) seen_of[c.instance] = c;
@@ -295,6 +301,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
       if (c != category_of.end()) v.category = c->second;
       v.visible = quality[i] >= 0.0;
       v.detected = matched.count(v.instance) > 0;
+      v.reported = reported_set.count(v.instance) > 0;
       out.coverage_voxels.push_back(v);
     }
   }

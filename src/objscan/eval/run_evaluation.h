@@ -37,7 +37,8 @@ struct CoverageVoxelOutcome {
   int instance = world::kNoInstance;
   world::Category category = world::Category::kOther;
   bool visible = false;
-  bool detected = false;
+  bool detected = false;  // on a matched instance (delta_detect of coverage_rate)
+  bool reported = false;  // on the majority instance of a reported object (coverage_detected_rate)
 };
 
 struct RunMetrics {
@@ -48,6 +49,10 @@ struct RunMetrics {
   double coverage_rate = 0.0, coverage_quality = 0.0;
   // delta_vis alone: the share of V_S seen within range, whether or not its object was recognised.
   double coverage_visible_rate = 0.0;
+  // The rate with delta_detect(v) = 1 on every ground-truth object that is the majority instance of
+  // a reported object, whatever its label: how much of the objects the robot found it scanned,
+  // apart from whether recognition named them right (coverage_rate counts matched objects only).
+  double coverage_detected_rate = 0.0;
   std::vector<InstanceOutcome> instances;
   std::vector<CoverageVoxelOutcome> coverage_voxels;  // every voxel of V_S
   double travel_m = 0.0;

@@ -130,6 +130,7 @@ std::string RunJson(const RunOutputInputs& in) {
                  {"coverage_rate", m.coverage_rate},
                  {"coverage_quality", m.coverage_quality},
                  {"coverage_visible_rate", m.coverage_visible_rate},
+                 {"coverage_detected_rate", m.coverage_detected_rate},
                  {"travel_m", m.travel_m},
                  {"views", m.views},
                  {"nbo_count", m.nbo_count},
@@ -306,7 +307,7 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   // within range, so what the robot missed can be looked at.
   if (in.metrics) {
     io::PlyData coverage;
-    std::vector<std::int32_t> instance, category, visible, detected;
+    std::vector<std::int32_t> instance, category, visible, detected, reported;
     for (const auto& v : in.metrics->coverage_voxels) {
       coverage.points.push_back(v.center_world);
       coverage.normals.push_back(v.normal_world);
@@ -317,11 +318,13 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
       category.push_back(world::CategoryId(v.category));
       visible.push_back(v.visible ? 1 : 0);
       detected.push_back(v.detected ? 1 : 0);
+      reported.push_back(v.reported ? 1 : 0);
     }
     coverage.int_properties.emplace_back("instance", instance);
     coverage.int_properties.emplace_back("category_id", category);
     coverage.int_properties.emplace_back("visible", visible);
     coverage.int_properties.emplace_back("detected", detected);
+    coverage.int_properties.emplace_back("reported", reported);
     io::WritePly((dir / "coverage.ply").string(), coverage);
   }
 
