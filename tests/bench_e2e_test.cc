@@ -4,7 +4,6 @@
 
 #include "run_command.h"
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -12,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 namespace {
@@ -24,18 +22,12 @@ using Result = objscan::testing::CommandResult;
 Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand(OBJSCAN_BINARY, args); }
 
 fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("objscan_bench_e2e_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
+  const fs::path d = objscan::testing::ScratchPath("objscan_bench_e2e_" + name);
   fs::create_directories(d);
   return d;
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using objscan::testing::ReadFile;
 
 std::string FinishedRun(const std::string& spec, double recall) {
   nlohmann::json j;
@@ -84,13 +76,13 @@ TEST(BenchE2eTest, FinishedRunsAreSkippedAndTheReportIsRebuilt) {
   EXPECT_EQ(j["runs_started"], 0);
   EXPECT_EQ(j["runs_complete_in_report"], 10);
   EXPECT_NE(r.err.find("10 done, 0 to run"), std::string::npos) << r.err;
-  const std::string md = ReadText(out / "report" / "results.md");
+  const std::string md = ReadFile(out / "report" / "results.md");
   EXPECT_NE(md.find("Living room"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "report" / "fig13a_coverage_travel.png"));
   // `objscan report` over the same folder rebuilds the identical results.json elsewhere.
   const Result again = RunObjscan("report " + out.string() + " --out " + (out / "again").string());
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  EXPECT_EQ(ReadText(out / "again" / "results.json"), ReadText(out / "report" / "results.json"));
+  EXPECT_EQ(ReadFile(out / "again" / "results.json"), ReadFile(out / "report" / "results.json"));
   fs::remove_all(out);
 }
 

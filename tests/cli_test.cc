@@ -7,9 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "shared_data.h"
@@ -22,11 +20,7 @@ using Result = objscan::testing::CommandResult;
 
 Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand(OBJSCAN_BINARY, args); }
 
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("objscan_e2e_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
-}
+fs::path TempDir(const std::string& name) { return objscan::testing::ScratchPath("objscan_e2e_" + name); }
 
 int CountLines(const std::string& s) {
   int n = 0;
@@ -104,10 +98,8 @@ TEST(CliTest, RenderWritesDepthInstanceAndCloud) {
 TEST(CliTest, PrintConfigMatchesDefaultYaml) {
   const Result r = RunObjscan("run --print-config");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(objscan::testing::ProjectRoot() + "/config/default.yaml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  EXPECT_EQ(r.out, ss.str()) << "run scripts/update_default_config.sh";
+  EXPECT_EQ(r.out, objscan::testing::ReadFile(objscan::testing::ProjectRoot() + "/config/default.yaml"))
+      << "run scripts/update_default_config.sh";
 }
 
 TEST(CliTest, OascWorldLoadsThroughTheCli) {

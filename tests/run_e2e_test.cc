@@ -4,13 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "run_command.h"
-#include <unistd.h>
 
-#include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "objscan/io/ply.h"
@@ -23,12 +19,7 @@ using Result = objscan::testing::CommandResult;
 
 Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand(OBJSCAN_BINARY, args); }
 
-nlohmann::json ReadJson(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return nlohmann::json::parse(s.str());
-}
+nlohmann::json ReadJson(const fs::path& path) { return nlohmann::json::parse(objscan::testing::ReadFile(path)); }
 
 // run.json without what depends on the machine's speed.
 nlohmann::json WithoutTimings(nlohmann::json j) {
@@ -38,8 +29,7 @@ nlohmann::json WithoutTimings(nlohmann::json j) {
 }
 
 TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
-  const fs::path dir = fs::temp_directory_path() / ("objscan_run_e2e_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = objscan::testing::ScratchPath("objscan_run_e2e");
   fs::create_directories(dir);
   // One procedural model per category keeps the database build short.
   const std::string db = (dir / "small.db").string();

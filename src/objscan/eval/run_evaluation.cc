@@ -273,7 +273,9 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
     std::unordered_map<int, InstanceCoverage> seen_of;
     for (const auto& c : coverage.PerInstance()) seen_of[c.instance] = c;
     const std::set<int> matched(detected.begin(), detected.end());
+    std::unordered_map<int, world::Category> category_of;
     for (const auto& g : truth) {
+      category_of[g.instance_id] = g.category;
       InstanceOutcome o;
       o.instance = g.instance_id;
       o.category = g.category;
@@ -287,8 +289,6 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
       o.matched = matched.count(g.instance_id) > 0;
       out.instances.push_back(o);
     }
-    std::unordered_map<int, world::Category> category_of;
-    for (const auto& g : truth) category_of[g.instance_id] = g.category;
     const auto& voxels = coverage.voxels();
     const auto& quality = coverage.best_quality();
     out.coverage_voxels.reserve(voxels.size());
