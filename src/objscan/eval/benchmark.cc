@@ -97,7 +97,7 @@ Suite ResolveSuite(const std::string& name_or_dir, const SuiteOptions& options) 
     Suite suite;
     suite.name = "procedural";
     for (const auto& category : SceneCategories()) {
-      for (int seed = 1; seed <= options.seeds_per_category; ++seed) {
+      for (int seed = options.first_seed; seed < options.first_seed + options.seeds_per_category; ++seed) {
         suite.scenes.push_back({"procedural-" + category + "-" + std::to_string(seed),
                                 "procedural:" + category + ":" + std::to_string(seed), category});
       }

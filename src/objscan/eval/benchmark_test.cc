@@ -77,6 +77,24 @@ TEST(SuiteTest, ProceduralIsFiveCategoriesTimesSeeds) {
                              [](const BenchScene& a, const BenchScene& b) { return a.id < b.id; }));
 }
 
+TEST(SuiteTest, ProceduralSeedsCanStartLater) {
+  SuiteOptions options;
+  options.seeds_per_category = 3;
+  options.first_seed = 4;
+  const Suite suite = ResolveSuite("procedural", options);
+  ASSERT_EQ(suite.scenes.size(), 15u);
+  std::set<std::string> specs;
+  for (const auto& s : suite.scenes) specs.insert(s.spec);
+  for (const char* category : {"bathroom", "bedroom", "kitchen", "living_room", "office"}) {
+    for (int seed = 1; seed <= 7; ++seed) {
+      const std::string spec = std::string("procedural:") + category + ":" + std::to_string(seed);
+      EXPECT_EQ(specs.count(spec), seed >= 4 && seed <= 6 ? 1u : 0u) << spec;
+    }
+  }
+  options.first_seed = 0;
+  EXPECT_THROW(ResolveSuite("procedural", options), InputError);
+}
+
 TEST(SuiteTest, FolderIsSearchedRecursivelyForWorlds) {
   TempDir dir;
   WriteText(dir.path() / "SUNCG" / "bedroom" / "h1" / "0_7" / "room.world", "<sdf/>");
