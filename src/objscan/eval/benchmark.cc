@@ -97,7 +97,9 @@ Suite ResolveSuite(const std::string& name_or_dir, const SuiteOptions& options) 
     Suite suite;
     suite.name = "procedural";
     for (const auto& category : SceneCategories()) {
-      for (int seed = options.first_seed; seed < options.first_seed + options.seeds_per_category; ++seed) {
+      // 64-bit: a first seed near INT_MAX must not overflow.
+      const std::int64_t end = static_cast<std::int64_t>(options.first_seed) + options.seeds_per_category;
+      for (std::int64_t seed = options.first_seed; seed < end; ++seed) {
         suite.scenes.push_back({"procedural-" + category + "-" + std::to_string(seed),
                                 "procedural:" + category + ":" + std::to_string(seed), category});
       }
