@@ -94,6 +94,9 @@ std::string RunJson(const RunOutputInputs& in) {
              {"given_up", o.given_up},
              {"pose", ModelPoseJson(o.T_world_model)},
              {"points", o.points}};
+    if (o.model_labelled) {
+      obj["graph_cut_category"] = o.graph_cut_category ? Json(world::CategoryName(*o.graph_cut_category)) : Json(nullptr);
+    }
     if (o.size_rejected_category) obj["size_rejected_category"] = world::CategoryName(*o.size_rejected_category);
     if (o.wall_opening_share) obj["wall_opening_share"] = *o.wall_opening_share;
     if (o.wall_opening_relabelled) {

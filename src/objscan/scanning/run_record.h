@@ -50,6 +50,10 @@ struct ObjectAlternative {
 struct ObjectRecord {
   int id = -1;                                  // smallest pre-segment label of the object
   std::optional<world::Category> category;      // nullopt: unrecognized
+  // Whether the best full model's category replaced the graph-cut label, and that label
+  // (scanner.model_label_min_objectness; nullopt: "none").
+  bool model_labelled = false;
+  std::optional<world::Category> graph_cut_category;
   // The label it had before the size check found no model of that category its size (nullopt: kept).
   std::optional<world::Category> size_rejected_category;
   // Share of its points in wall openings (when walls are known), and the label recognition gave it

@@ -859,6 +859,11 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.id = r.component_ids.front();
     o.category = r.category;
     if (const auto* best = r.best_model()) {
+      if (best->objectness >= s.config.scanner.model_label_min_objectness && o.category != best->category) {
+        o.model_labelled = true;
+        o.graph_cut_category = o.category;
+        o.category = best->category;
+      }
       o.model_index = best->model_id;
       o.model = s.ModelName(best->model_id);
       o.T_world_model = best->T_world_model;
@@ -995,6 +1000,47 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     const segmentation::ModelMatch* replacement =
         ReplacementLabel(*taken[i], *full_matches[i], extents[i], in_opening[i], category_extents, size_check);
     if (replacement != nullptr) s.Adopt(*replacement, &rec.objects[i]);
+  }
+  // Pieces of one window are reported as one window (wall_openings.h).
+  if (openings.join_gap_m >= 0.0) {
+    std::vector<WindowPiece> pieces(host.size());
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      const ObjectRecord& o = rec.objects[i];
+      if (host[i] != static_cast<int>(i) || o.category != world::Category::kWindow) continue;
+      WindowPiece& piece = pieces[i];
+      piece.window = true;
+      piece.complete = o.complete;
+      // A completed window's points are the components the robot saw of it.
+      if (o.complete) {
+        for (auto l : o.labels) {
+          if (const segmentation::Component* c = s.segmenter_graph().Find(l)) {
+            for (const Eigen::Vector3f& p : c->points) piece.bounds.Extend(p.cast<double>());
+            piece.num_points += c->points.size();
+          }
+        }
+      } else {
+        for (const Eigen::Vector3f& p : object_points[i]) piece.bounds.Extend(p.cast<double>());
+        piece.num_points = object_points[i].size();
+      }
+    }
+    const std::vector<int> joined = JoinWindowPieces(pieces, openings.join_gap_m);
+    std::vector<bool> grew(host.size(), false);
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      const int into = joined[i];
+      if (into == static_cast<int>(i)) continue;
+      auto& labels = rec.objects[static_cast<std::size_t>(into)].labels;
+      labels.insert(labels.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
+      std::sort(labels.begin(), labels.end());
+      host[i] = into;
+      grew[static_cast<std::size_t>(into)] = true;
+    }
+    // A grown unfinished window takes the window model that fits all its pieces best.
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      ObjectRecord& o = rec.objects[i];
+      if (!grew[i] || o.complete) continue;
+      const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kWindow);
+      if (best) s.Adopt(*best, &o);
+    }
   }
   std::vector<ObjectRecord> kept;
   for (std::size_t i = 0; i < host.size(); ++i) {

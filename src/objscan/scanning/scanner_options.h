@@ -50,6 +50,12 @@ struct ScannerOptions {
   // Floor and walls are searched again only when the map grew by this share since the last search;
   // in between, new elements are tagged with the known planes (0 = search every step).
   double structure_redetect_growth = 0.1;
+  // Beyond the paper: an unfinished object whose best full model scores O(r, m) >= this is reported
+  // with that model's category instead of the graph-cut label. The label is voted by the components'
+  // matches (parts, views and pieces of models), the model by the whole object; a confident whole-object
+  // fit is the better witness. The paper reports only completed objects (O > 0.96) as their model:
+  // 1.0 or more = off.
+  double model_label_min_objectness = 1.0;
   // Pieces lying on a recognized neighbour's model are reported as part of it (fragment_absorption.h).
   FragmentAbsorptionOptions fragments;
   // Reported objects whose size no database model of their category has lose that label
@@ -83,6 +89,7 @@ struct ScannerOptions {
     v("structure_residue_distance_m", structure_residue_distance_m);
     v("structure_reveal_depth_m", structure_reveal_depth_m);
     v("structure_redetect_growth", structure_redetect_growth);
+    v("model_label_min_objectness", model_label_min_objectness);
     v("fragments", fragments);
     v("size_check", size_check);
     v("wall_openings", wall_openings);
@@ -108,6 +115,7 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_residue_distance_m", structure_residue_distance_m);
     config::RequireNonNegative("scanner.structure_reveal_depth_m", structure_reveal_depth_m);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
+    config::RequireNonNegative("scanner.model_label_min_objectness", model_label_min_objectness);
     fragments.Validate();
     size_check.Validate();
     wall_openings.Validate();

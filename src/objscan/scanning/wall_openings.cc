@@ -1,7 +1,9 @@
 #include "objscan/scanning/wall_openings.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <numeric>
 
 #include "objscan/mapping/planes.h"
 
@@ -19,6 +21,7 @@ void WallOpeningOptions::Validate() const {
   config::Require(window_keep_share <= window_min_share, "scanner.wall_openings.window_keep_share",
                   "must be <= window_min_share");
   config::RequireNonNegative("scanner.wall_openings.min_sill_height_m", min_sill_height_m);
+  config::Require(std::isfinite(join_gap_m), "scanner.wall_openings.join_gap_m", "must be finite");
 }
 
 WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points_world,
@@ -46,6 +49,47 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
     result.verdict = WallOpeningVerdict::kNotWindow;
   }
   return result;
+}
+
+std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m) {
+  const int n = static_cast<int>(pieces.size());
+  std::vector<int> root(pieces.size());
+  std::iota(root.begin(), root.end(), 0);
+  if (gap_m < 0.0) return root;
+  const auto find = [&root](int i) {
+    while (root[static_cast<std::size_t>(i)] != i) i = root[static_cast<std::size_t>(i)];
+    return i;
+  };
+  // Whether a should host b's window: complete first, then more points, then the lower index.
+  const auto hosts = [&pieces](int a, int b) {
+    const WindowPiece& pa = pieces[static_cast<std::size_t>(a)];
+    const WindowPiece& pb = pieces[static_cast<std::size_t>(b)];
+    if (pa.complete != pb.complete) return pa.complete;
+    if (pa.num_points != pb.num_points) return pa.num_points > pb.num_points;
+    return a < b;
+  };
+  for (int a = 0; a < n; ++a) {
+    const WindowPiece& pa = pieces[static_cast<std::size_t>(a)];
+    if (!pa.window || pa.bounds.Empty()) continue;
+    for (int b = a + 1; b < n; ++b) {
+      const WindowPiece& pb = pieces[static_cast<std::size_t>(b)];
+      if (!pb.window || pb.bounds.Empty()) continue;
+      const bool near = (pa.bounds.min_m.array() <= pb.bounds.max_m.array() + gap_m).all() &&
+                        (pb.bounds.min_m.array() <= pa.bounds.max_m.array() + gap_m).all();
+      if (!near) continue;
+      const int ra = find(a);
+      const int rb = find(b);
+      if (ra == rb) continue;
+      if (hosts(ra, rb)) {
+        root[static_cast<std::size_t>(rb)] = ra;
+      } else {
+        root[static_cast<std::size_t>(ra)] = rb;
+      }
+    }
+  }
+  std::vector<int> host(pieces.size());
+  for (int i = 0; i < n; ++i) host[static_cast<std::size_t>(i)] = find(i);
+  return host;
 }
 
 }  // namespace objscan::scanning

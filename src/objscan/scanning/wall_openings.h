@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "objscan/common/config.h"
+#include "objscan/geometry/aabb.h"
 
 namespace objscan::mapping {
 struct StructureResult;
@@ -24,6 +25,10 @@ struct WallOpeningOptions {
   double window_min_share = 0.5;  // share of an object's points in openings that makes it a window
   double window_keep_share = 0.1; // a window label needs at least this share
   double min_sill_height_m = 0.2; // a window's lowest point is this far above the floor (doors reach it)
+  // Objects labelled window whose bounding boxes come this close are pieces of one window (frame,
+  // sashes and panes are pre-segmented apart, and each piece fits a window model); they are reported
+  // as one. Negative = off (each piece is an object, as recognition left them).
+  double join_gap_m = 0.1;
 
   template <class V>
   void Visit(V& v) {
@@ -33,6 +38,7 @@ struct WallOpeningOptions {
     v("window_min_share", window_min_share);
     v("window_keep_share", window_keep_share);
     v("min_sill_height_m", min_sill_height_m);
+    v("join_gap_m", join_gap_m);
   }
   void Validate() const;
 };
@@ -52,5 +58,18 @@ struct WallOpeningResult {
 WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points_world,
                                       const mapping::StructureResult& structure, bool labelled_window,
                                       const WallOpeningOptions& options);
+
+// One reported object's part in JoinWindowPieces.
+struct WindowPiece {
+  geometry::Aabb3 bounds;   // of its points, world frame
+  bool window = false;      // labelled window (only windows join)
+  bool complete = false;    // replaced by its model: it hosts whatever joins it
+  std::size_t num_points = 0;
+};
+
+// Windows whose boxes lie within gap_m of each other (transitively) form one window. Returns, per
+// piece, the piece it joins: the complete one if any, else the one with most points (lowest index on
+// ties); itself for pieces that stay (all of them when gap_m < 0).
+std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m);
 
 }  // namespace objscan::scanning

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "objscan/mapping/planes.h"
 #include "objscan/mapping/testing/one_wall.h"
 
@@ -98,7 +100,47 @@ TEST(WallOpeningTest, OptionsAreChecked) {
   o = WallOpeningOptions();
   o.window_min_share = 1.5;
   EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.join_gap_m = std::numeric_limits<double>::infinity();
+  EXPECT_ANY_THROW(o.Validate());
   EXPECT_NO_THROW(WallOpeningOptions().Validate());
+}
+
+WindowPiece Piece(double y0, double y1, double z0, double z1, bool window, std::size_t num_points,
+                  bool complete = false) {
+  WindowPiece p;
+  p.bounds.Extend(Eigen::Vector3d(-0.1, y0, z0));
+  p.bounds.Extend(Eigen::Vector3d(-0.05, y1, z1));
+  p.window = window;
+  p.complete = complete;
+  p.num_points = num_points;
+  return p;
+}
+
+TEST(WindowPiecesTest, TouchingWindowPiecesJoinTheLargest) {
+  // Two sashes of one window 4 cm apart, its frame's top above them, and a window 1 m further on.
+  const std::vector<WindowPiece> pieces = {Piece(1.0, 1.5, 0.9, 1.9, true, 500), Piece(1.54, 2.0, 0.9, 1.9, true, 800),
+                                           Piece(1.0, 2.0, 1.95, 2.0, true, 100), Piece(3.0, 3.8, 0.9, 1.9, true, 700)};
+  EXPECT_EQ(JoinWindowPieces(pieces, 0.1), (std::vector<int>{1, 1, 1, 3}));
+  // Closer than the gap only through the frame: the join is transitive.
+  EXPECT_EQ(JoinWindowPieces(pieces, 0.05), (std::vector<int>{1, 1, 1, 3}));
+  // Off: every piece stays.
+  EXPECT_EQ(JoinWindowPieces(pieces, -1.0), (std::vector<int>{0, 1, 2, 3}));
+}
+
+TEST(WindowPiecesTest, OnlyWindowsJoinAndACompleteWindowHosts) {
+  // A dresser-labelled piece between two window pieces bridges nothing; the complete window hosts
+  // the larger unfinished piece.
+  std::vector<WindowPiece> pieces = {Piece(1.0, 1.5, 0.9, 1.9, true, 300, true), Piece(1.55, 2.0, 0.9, 1.9, false, 900),
+                                     Piece(1.52, 2.2, 0.9, 1.9, true, 900)};
+  EXPECT_EQ(JoinWindowPieces(pieces, 0.1), (std::vector<int>{0, 1, 0}));
+  // Far apart (30 cm of wall between them): two windows.
+  pieces[2] = Piece(1.8, 2.2, 0.9, 1.9, true, 900);
+  EXPECT_EQ(JoinWindowPieces(pieces, 0.1), (std::vector<int>{0, 1, 2}));
+  // Equal pieces: the lower index hosts; a piece without points never joins.
+  const std::vector<WindowPiece> equal = {Piece(1.0, 1.5, 0.9, 1.9, true, 400), Piece(1.5, 2.0, 0.9, 1.9, true, 400),
+                                          WindowPiece{geometry::Aabb3(), true, false, 0}};
+  EXPECT_EQ(JoinWindowPieces(equal, 0.1), (std::vector<int>{0, 0, 2}));
 }
 
 }  // namespace
