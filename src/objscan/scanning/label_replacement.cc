@@ -17,4 +17,10 @@ const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const se
   return best;
 }
 
+std::optional<world::Category> ModelLabel(const std::optional<world::Category>& graph_cut,
+                                          const segmentation::ModelMatch* best, double min_objectness) {
+  if (best != nullptr && best->objectness >= min_objectness) return best->category;
+  return graph_cut;
+}
+
 }  // namespace objscan::scanning

@@ -20,4 +20,12 @@ const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const se
                                                  const recognition::CategoryExtents& extents,
                                                  const recognition::SizePlausibilityOptions& options);
 
+// The label an unfinished object is reported with (scanner.model_label_min_objectness): its best
+// full model's category when that model's objectness reaches `min_objectness`, else the graph-cut
+// label (nullopt: "none"). The graph cut votes with the components' matches, which include parts and
+// views of models (a monitor's screen matches a shelf board); the best full model is fitted to the
+// whole object. `best` may be null (no full model matched).
+std::optional<world::Category> ModelLabel(const std::optional<world::Category>& graph_cut,
+                                          const segmentation::ModelMatch* best, double min_objectness);
+
 }  // namespace objscan::scanning

@@ -101,5 +101,18 @@ TEST(ReplacementLabelTest, ObjectnessThresholdIsValidated) {
   EXPECT_NO_THROW(options.Validate());
 }
 
+TEST(ModelLabelTest, AConfidentBestModelNamesTheObject) {
+  const segmentation::ModelMatch monitor = Match(Category::kMonitor, 0.94);
+  // At or above the threshold the model's category wins, also over "none".
+  EXPECT_EQ(ModelLabel(Category::kShelves, &monitor, 0.93), Category::kMonitor);
+  EXPECT_EQ(ModelLabel(Category::kShelves, &monitor, 0.94), Category::kMonitor);
+  EXPECT_EQ(ModelLabel(std::nullopt, &monitor, 0.93), Category::kMonitor);
+  // Below it, or without a model, the graph cut's label stays; 1.0 and above is the paper (off).
+  EXPECT_EQ(ModelLabel(Category::kShelves, &monitor, 0.95), Category::kShelves);
+  EXPECT_EQ(ModelLabel(std::nullopt, &monitor, 0.95), std::nullopt);
+  EXPECT_EQ(ModelLabel(Category::kShelves, nullptr, 0.0), Category::kShelves);
+  EXPECT_EQ(ModelLabel(Category::kShelves, &monitor, 1.0), Category::kShelves);
+}
+
 }  // namespace
 }  // namespace objscan::scanning

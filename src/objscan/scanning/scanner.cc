@@ -859,10 +859,12 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.id = r.component_ids.front();
     o.category = r.category;
     if (const auto* best = r.best_model()) {
-      if (best->objectness >= s.config.scanner.model_label_min_objectness && o.category != best->category) {
+      const std::optional<world::Category> label =
+          ModelLabel(o.category, best, s.config.scanner.model_label_min_objectness);
+      if (label != o.category) {
         o.model_labelled = true;
         o.graph_cut_category = o.category;
-        o.category = best->category;
+        o.category = label;
       }
       o.model_index = best->model_id;
       o.model = s.ModelName(best->model_id);
@@ -1012,14 +1014,16 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       piece.complete = o.complete;
       // A completed window's points are the components the robot saw of it.
       if (o.complete) {
+        std::vector<Eigen::Vector3f> seen;
         for (auto l : o.labels) {
           if (const segmentation::Component* c = s.segmenter_graph().Find(l)) {
-            for (const Eigen::Vector3f& p : c->points) piece.bounds.Extend(p.cast<double>());
-            piece.num_points += c->points.size();
+            seen.insert(seen.end(), c->points.begin(), c->points.end());
           }
         }
+        piece.opening = OpeningBounds(seen, s.structure, openings);
+        piece.num_points = seen.size();
       } else {
-        for (const Eigen::Vector3f& p : object_points[i]) piece.bounds.Extend(p.cast<double>());
+        piece.opening = OpeningBounds(object_points[i], s.structure, openings);
         piece.num_points = object_points[i].size();
       }
     }

@@ -51,6 +51,35 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
   return result;
 }
 
+OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, const mapping::StructureResult& structure,
+                            const WallOpeningOptions& options) {
+  OpeningExtent extent;
+  if (!options.enabled || structure.walls.empty()) return extent;
+  // The wall whose opening holds each point (the first, as StructureResult::InWallOpening), -1 for none.
+  std::vector<int> wall_of(points_world.size(), -1);
+  std::vector<std::size_t> count(structure.walls.size(), 0);
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    const Eigen::Vector3d p = points_world[i].cast<double>();
+    for (std::size_t w = 0; w < structure.walls.size(); ++w) {
+      const mapping::WallPlane& wall = structure.walls[w];
+      const double depth = -wall.SignedDistance(p);
+      if (depth <= options.min_depth_m || depth > options.max_depth_m) continue;
+      const double s = wall.Along(p);
+      if (s < wall.span_min_m || s > wall.span_max_m || p.z() < wall.z_min_m || p.z() > wall.z_max_m) continue;
+      wall_of[i] = static_cast<int>(w);
+      ++count[w];
+      break;
+    }
+  }
+  const auto most = std::max_element(count.begin(), count.end());
+  if (*most == 0) return extent;
+  extent.wall = static_cast<int>(most - count.begin());
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    if (wall_of[i] == extent.wall) extent.bounds.Extend(points_world[i].cast<double>());
+  }
+  return extent;
+}
+
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m) {
   const int n = static_cast<int>(pieces.size());
   std::vector<int> root(pieces.size());
@@ -70,12 +99,14 @@ std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double
   };
   for (int a = 0; a < n; ++a) {
     const WindowPiece& pa = pieces[static_cast<std::size_t>(a)];
-    if (!pa.window || pa.bounds.Empty()) continue;
+    if (!pa.window || pa.opening.wall < 0 || pa.opening.bounds.Empty()) continue;
     for (int b = a + 1; b < n; ++b) {
       const WindowPiece& pb = pieces[static_cast<std::size_t>(b)];
-      if (!pb.window || pb.bounds.Empty()) continue;
-      const bool near = (pa.bounds.min_m.array() <= pb.bounds.max_m.array() + gap_m).all() &&
-                        (pb.bounds.min_m.array() <= pa.bounds.max_m.array() + gap_m).all();
+      if (!pb.window || pb.opening.wall != pa.opening.wall || pb.opening.bounds.Empty()) continue;
+      const geometry::Aabb3& ba = pa.opening.bounds;
+      const geometry::Aabb3& bb = pb.opening.bounds;
+      const bool near = (ba.min_m.array() <= bb.max_m.array() + gap_m).all() &&
+                        (bb.min_m.array() <= ba.max_m.array() + gap_m).all();
       if (!near) continue;
       const int ra = find(a);
       const int rb = find(b);

@@ -25,9 +25,9 @@ struct WallOpeningOptions {
   double window_min_share = 0.5;  // share of an object's points in openings that makes it a window
   double window_keep_share = 0.1; // a window label needs at least this share
   double min_sill_height_m = 0.2; // a window's lowest point is this far above the floor (doors reach it)
-  // Objects labelled window whose bounding boxes come this close are pieces of one window (frame,
-  // sashes and panes are pre-segmented apart, and each piece fits a window model); they are reported
-  // as one. Negative = off (each piece is an object, as recognition left them).
+  // Objects labelled window whose points in wall openings come this close (their boxes) are pieces of
+  // one window (frame, sashes and panes are pre-segmented apart, and each piece fits a window model);
+  // they are reported as one. Negative = off (each piece is an object, as recognition left them).
   double join_gap_m = 0.1;
 
   template <class V>
@@ -59,15 +59,25 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
                                       const mapping::StructureResult& structure, bool labelled_window,
                                       const WallOpeningOptions& options);
 
+// Where an object lies in wall openings: the wall whose opening holds most of its points (-1 when
+// none does or options are off) and the box of the points in that wall's opening.
+struct OpeningExtent {
+  int wall = -1;  // index into StructureResult::walls
+  geometry::Aabb3 bounds;
+};
+OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, const mapping::StructureResult& structure,
+                            const WallOpeningOptions& options);
+
 // One reported object's part in JoinWindowPieces.
 struct WindowPiece {
-  geometry::Aabb3 bounds;   // of its points, world frame
+  OpeningExtent opening;    // where it lies in wall openings (OpeningBounds)
   bool window = false;      // labelled window (only windows join)
   bool complete = false;    // replaced by its model: it hosts whatever joins it
   std::size_t num_points = 0;
 };
 
-// Windows whose boxes lie within gap_m of each other (transitively) form one window. Returns, per
+// Windows in the opening of one wall whose boxes there lie within gap_m of each other (transitively)
+// form one window. Returns, per
 // piece, the piece it joins: the complete one if any, else the one with most points (lowest index on
 // ties); itself for pieces that stay (all of them when gap_m < 0).
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m);

@@ -106,11 +106,53 @@ TEST(WallOpeningTest, OptionsAreChecked) {
   EXPECT_NO_THROW(WallOpeningOptions().Validate());
 }
 
+TEST(WindowPiecesTest, OpeningBoundsHoldOnlyThePointsInOpenings) {
+  // A recessed pane and, in the room, a strip of the object 0.5 m in front of the wall.
+  std::vector<Eigen::Vector3f> points = Pane(-0.06, 1.0, 2.0, 0.9, 2.0);
+  Append(Pane(0.5, 0.0, 3.0, 0.5, 0.6), &points);
+  const OpeningExtent extent = OpeningBounds(points, OneWallRoom(), WallOpeningOptions());
+  EXPECT_EQ(extent.wall, 0);
+  ASSERT_FALSE(extent.bounds.Empty());
+  EXPECT_NEAR(extent.bounds.min_m.x(), -0.06, 1e-6);
+  EXPECT_NEAR(extent.bounds.max_m.x(), -0.06, 1e-6);
+  EXPECT_NEAR(extent.bounds.min_m.y(), 1.0, 1e-6);
+  EXPECT_NEAR(extent.bounds.max_m.y(), 2.0, 1e-6);
+  EXPECT_NEAR(extent.bounds.min_m.z(), 0.9, 1e-6);
+  EXPECT_NEAR(extent.bounds.max_m.z(), 2.0, 1e-6);
+  EXPECT_EQ(OpeningBounds(Pane(0.5, 0.0, 3.0, 0.5, 0.6), OneWallRoom(), WallOpeningOptions()).wall, -1);
+  WallOpeningOptions off;
+  off.enabled = false;
+  EXPECT_EQ(OpeningBounds(points, OneWallRoom(), off).wall, -1);
+  EXPECT_EQ(OpeningBounds(points, mapping::StructureResult(), WallOpeningOptions()).wall, -1);
+}
+
+TEST(WindowPiecesTest, OpeningBoundsKeepToTheWallHoldingMostPoints) {
+  // A second wall y = 0 facing +y: a window in it near the corner, and a few points of the object
+  // behind the first wall.
+  mapping::StructureResult room = OneWallRoom();
+  mapping::WallPlane second = room.walls.front();
+  second.normal = Eigen::Vector3d::UnitY();
+  second.offset_m = 0.0;
+  second.span_min_m = -4.0;  // Along = -x
+  second.span_max_m = 0.0;
+  room.walls.push_back(second);
+  std::vector<Eigen::Vector3f> points;
+  for (double x = 0.2; x <= 1.2 + 1e-9; x += 0.02) {
+    for (double z = 1.0; z <= 2.0 + 1e-9; z += 0.02) points.emplace_back(x, -0.06, z);
+  }
+  Append(Pane(-0.06, 0.5, 0.52, 1.0, 1.1), &points);
+  const OpeningExtent extent = OpeningBounds(points, room, WallOpeningOptions());
+  EXPECT_EQ(extent.wall, 1);
+  EXPECT_NEAR(extent.bounds.min_m.x(), 0.2, 1e-6);
+  EXPECT_NEAR(extent.bounds.max_m.y(), -0.06, 1e-6);
+}
+
 WindowPiece Piece(double y0, double y1, double z0, double z1, bool window, std::size_t num_points,
-                  bool complete = false) {
+                  bool complete = false, int wall = 0) {
   WindowPiece p;
-  p.bounds.Extend(Eigen::Vector3d(-0.1, y0, z0));
-  p.bounds.Extend(Eigen::Vector3d(-0.05, y1, z1));
+  p.opening.wall = wall;
+  p.opening.bounds.Extend(Eigen::Vector3d(-0.1, y0, z0));
+  p.opening.bounds.Extend(Eigen::Vector3d(-0.05, y1, z1));
   p.window = window;
   p.complete = complete;
   p.num_points = num_points;
@@ -139,8 +181,12 @@ TEST(WindowPiecesTest, OnlyWindowsJoinAndACompleteWindowHosts) {
   EXPECT_EQ(JoinWindowPieces(pieces, 0.1), (std::vector<int>{0, 1, 2}));
   // Equal pieces: the lower index hosts; a piece without points never joins.
   const std::vector<WindowPiece> equal = {Piece(1.0, 1.5, 0.9, 1.9, true, 400), Piece(1.5, 2.0, 0.9, 1.9, true, 400),
-                                          WindowPiece{geometry::Aabb3(), true, false, 0}};
+                                          WindowPiece{OpeningExtent(), true, false, 0}};
   EXPECT_EQ(JoinWindowPieces(equal, 0.1), (std::vector<int>{0, 0, 2}));
+  // Touching boxes in the openings of two walls (a corner): two windows.
+  const std::vector<WindowPiece> corner = {Piece(1.0, 1.5, 0.9, 1.9, true, 400, false, 0),
+                                           Piece(1.5, 2.0, 0.9, 1.9, true, 400, false, 1)};
+  EXPECT_EQ(JoinWindowPieces(corner, 0.1), (std::vector<int>{0, 1}));
 }
 
 }  // namespace
