@@ -51,11 +51,11 @@ struct ScannerOptions {
   // in between, new elements are tagged with the known planes (0 = search every step).
   double structure_redetect_growth = 0.1;
   // Beyond the paper: an unfinished object whose best full model scores O(r, m) >= this is reported
-  // with that model's category instead of the graph-cut label. The label is voted by the components'
-  // matches (parts, views and pieces of models), the model by the whole object; a confident whole-object
-  // fit is the better witness. The paper reports only completed objects (O > 0.96) as their model:
-  // 1.0 or more = off.
-  double model_label_min_objectness = 1.0;
+  // with that model's category instead of the graph-cut label (label_replacement.h, ModelLabel). The
+  // paper reports only completed objects (O > 0.96) as their model: 1.0 or more = off. 0.93: on the
+  // procedural rooms, labels of objects whose best model scored below it were more often right than
+  // the model (docs/results/procedural-3seeds-session13.md).
+  double model_label_min_objectness = 0.93;
   // Pieces lying on a recognized neighbour's model are reported as part of it (fragment_absorption.h).
   FragmentAbsorptionOptions fragments;
   // Reported objects whose size no database model of their category has lose that label
