@@ -59,14 +59,17 @@ bool StructureResult::InWallReveal(const Eigen::Vector3d& p, const Eigen::Vector
   return false;
 }
 
-bool StructureResult::InWallOpening(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const {
-  for (const WallPlane& w : walls) {
+int StructureResult::WallOpeningIndex(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const {
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    const WallPlane& w = walls[i];
     const double depth = -w.SignedDistance(p);
     if (depth <= min_depth_m || depth > max_depth_m) continue;
     const double s = w.Along(p);
-    if (s >= w.span_min_m && s <= w.span_max_m && p.z() >= w.z_min_m && p.z() <= w.z_max_m) return true;
+    if (s >= w.span_min_m && s <= w.span_max_m && p.z() >= w.z_min_m && p.z() <= w.z_max_m) {
+      return static_cast<int>(i);
+    }
   }
-  return false;
+  return -1;
 }
 
 StructureDetector::StructureDetector(const StructureOptions& options) : options_(options) { options_.Validate(); }

@@ -89,7 +89,11 @@ struct StructureResult {
   // True when p lies in an opening of a wall: behind its plane by more than min_depth_m and at most
   // max_depth_m, within its span and height. Nothing but what fills a door or window opening (a
   // recessed pane, a frame) is seen there: the space behind a wall is outside the room.
-  bool InWallOpening(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const;
+  bool InWallOpening(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const {
+    return WallOpeningIndex(p, min_depth_m, max_depth_m) >= 0;
+  }
+  // The first wall (index into walls) in whose opening p lies, as InWallOpening; -1 for none.
+  int WallOpeningIndex(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const;
 };
 
 class StructureDetector {

@@ -55,21 +55,12 @@ OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, co
                             const WallOpeningOptions& options) {
   OpeningExtent extent;
   if (!options.enabled || structure.walls.empty()) return extent;
-  // The wall whose opening holds each point (the first, as StructureResult::InWallOpening), -1 for none.
+  // The wall whose opening holds each point, -1 for none.
   std::vector<int> wall_of(points_world.size(), -1);
   std::vector<std::size_t> count(structure.walls.size(), 0);
   for (std::size_t i = 0; i < points_world.size(); ++i) {
-    const Eigen::Vector3d p = points_world[i].cast<double>();
-    for (std::size_t w = 0; w < structure.walls.size(); ++w) {
-      const mapping::WallPlane& wall = structure.walls[w];
-      const double depth = -wall.SignedDistance(p);
-      if (depth <= options.min_depth_m || depth > options.max_depth_m) continue;
-      const double s = wall.Along(p);
-      if (s < wall.span_min_m || s > wall.span_max_m || p.z() < wall.z_min_m || p.z() > wall.z_max_m) continue;
-      wall_of[i] = static_cast<int>(w);
-      ++count[w];
-      break;
-    }
+    wall_of[i] = structure.WallOpeningIndex(points_world[i].cast<double>(), options.min_depth_m, options.max_depth_m);
+    if (wall_of[i] >= 0) ++count[static_cast<std::size_t>(wall_of[i])];
   }
   const auto most = std::max_element(count.begin(), count.end());
   if (*most == 0) return extent;
