@@ -25,6 +25,10 @@ struct Aabb3 {
   bool Contains(const Eigen::Vector3d& p, double margin_m = 0.0) const {
     return (p.array() >= min_m.array() - margin_m).all() && (p.array() <= max_m.array() + margin_m).all();
   }
+  // Whether the boxes overlap or lie within gap_m of each other along every axis.
+  bool Touches(const Aabb3& o, double gap_m) const {
+    return (min_m.array() <= o.max_m.array() + gap_m).all() && (o.min_m.array() <= max_m.array() + gap_m).all();
+  }
   // Overlap of the XY footprints (strictly positive area), with an optional shrink margin.
   bool FootprintOverlaps(const Aabb3& o, double margin_m = 0.0) const {
     return min_m.x() + margin_m < o.max_m.x() && o.min_m.x() + margin_m < max_m.x() &&

@@ -459,6 +459,18 @@ struct Scanner::State {
   }
   const segmentation::ComponentGraph& segmenter_graph() const { return *graph_cache; }
 
+  // The points of the components with these labels: what the robot saw of an object (a completed
+  // one stands for its model, but its components keep the surface it was recognised from).
+  std::vector<Eigen::Vector3f> ComponentPoints(const std::vector<std::int32_t>& labels) const {
+    std::vector<Eigen::Vector3f> points;
+    for (auto l : labels) {
+      if (const segmentation::Component* c = segmenter_graph().Find(l)) {
+        points.insert(points.end(), c->points.begin(), c->points.end());
+      }
+    }
+    return points;
+  }
+
   // --- one step ------------------------------------------------------------------------------------
   bool ScanObjectStep(StepRecord* step) {
     const planning::RobotView view{robot.CameraPose().translation(), robot.CameraPose().linear().col(2)};
@@ -879,13 +891,16 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     candidates.push_back(std::move(f));
     full_matches.push_back(&r.full_model_matches);
   }
+  // Object `from` is reported as part of object `into`: its labels join into's (kept ascending).
+  const auto join_labels = [&rec](std::size_t from, int into) {
+    auto& labels = rec.objects[static_cast<std::size_t>(into)].labels;
+    labels.insert(labels.end(), rec.objects[from].labels.begin(), rec.objects[from].labels.end());
+    std::sort(labels.begin(), labels.end());
+  };
   // Pieces lying on a recognized neighbour's model join it (their labels, not their category).
   std::vector<int> host = AbsorbExplainedFragments(candidates, s.config.scanner.fragments);
   for (std::size_t i = 0; i < host.size(); ++i) {
-    if (host[i] == static_cast<int>(i)) continue;
-    auto& into = rec.objects[static_cast<std::size_t>(host[i])].labels;
-    into.insert(into.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
-    std::sort(into.begin(), into.end());
+    if (host[i] != static_cast<int>(i)) join_labels(i, host[i]);
   }
   // Pieces too small for their label join a neighbour whose category the union fits
   // (size_regrouping.h); then a label no model of the object's size has goes (and may be replaced
@@ -933,9 +948,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
         if (!rec.objects[i].complete) rec.objects[i].category = regroup.category[i];
         continue;
       }
-      auto& labels = rec.objects[static_cast<std::size_t>(into)].labels;
-      labels.insert(labels.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
-      std::sort(labels.begin(), labels.end());
+      join_labels(i, into);
       host[i] = into;
     }
   }
@@ -959,14 +972,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     ObjectRecord& o = rec.objects[i];
     if (host[i] != static_cast<int>(i) || s.structure.walls.empty()) continue;
     // A completed object stands for its model; what decides is the surface the robot saw of it.
-    std::vector<Eigen::Vector3f> seen;
-    if (o.complete) {
-      for (auto l : o.labels) {
-        if (const segmentation::Component* c = s.segmenter_graph().Find(l)) {
-          seen.insert(seen.end(), c->points.begin(), c->points.end());
-        }
-      }
-    }
+    const std::vector<Eigen::Vector3f> seen = o.complete ? s.ComponentPoints(o.labels) : std::vector<Eigen::Vector3f>();
     const bool window = o.category == world::Category::kWindow;
     const WallOpeningResult opening =
         ClassifyWallOpening(o.complete ? seen : object_points[i], s.structure, window, openings);
@@ -1012,14 +1018,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       WindowPiece& piece = pieces[i];
       piece.window = true;
       piece.complete = o.complete;
-      // A completed window's points are the components the robot saw of it.
       if (o.complete) {
-        std::vector<Eigen::Vector3f> seen;
-        for (auto l : o.labels) {
-          if (const segmentation::Component* c = s.segmenter_graph().Find(l)) {
-            seen.insert(seen.end(), c->points.begin(), c->points.end());
-          }
-        }
+        const std::vector<Eigen::Vector3f> seen = s.ComponentPoints(o.labels);
         piece.opening = OpeningBounds(seen, s.structure, openings);
         piece.num_points = seen.size();
       } else {
@@ -1032,9 +1032,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     for (std::size_t i = 0; i < host.size(); ++i) {
       const int into = joined[i];
       if (into == static_cast<int>(i)) continue;
-      auto& labels = rec.objects[static_cast<std::size_t>(into)].labels;
-      labels.insert(labels.end(), rec.objects[i].labels.begin(), rec.objects[i].labels.end());
-      std::sort(labels.begin(), labels.end());
+      join_labels(i, into);
       host[i] = into;
       grew[static_cast<std::size_t>(into)] = true;
     }

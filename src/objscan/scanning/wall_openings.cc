@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <numeric>
 
+#include "objscan/common/union_find.h"
 #include "objscan/mapping/planes.h"
 
 namespace objscan::scanning {
@@ -73,14 +73,17 @@ OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, co
 
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m) {
   const int n = static_cast<int>(pieces.size());
-  std::vector<int> root(pieces.size());
-  std::iota(root.begin(), root.end(), 0);
-  if (gap_m < 0.0) return root;
-  const auto find = [&root](int i) {
-    while (root[static_cast<std::size_t>(i)] != i) i = root[static_cast<std::size_t>(i)];
-    return i;
-  };
-  // Whether a should host b's window: complete first, then more points, then the lower index.
+  UnionFind windows(n);
+  for (int a = 0; gap_m >= 0.0 && a < n; ++a) {
+    const WindowPiece& pa = pieces[static_cast<std::size_t>(a)];
+    if (!pa.window || pa.opening.wall < 0 || pa.opening.bounds.Empty()) continue;
+    for (int b = a + 1; b < n; ++b) {
+      const WindowPiece& pb = pieces[static_cast<std::size_t>(b)];
+      if (!pb.window || pb.opening.wall != pa.opening.wall || pb.opening.bounds.Empty()) continue;
+      if (pa.opening.bounds.Touches(pb.opening.bounds, gap_m)) windows.Union(a, b);
+    }
+  }
+  // Each window's host: its complete piece first, then the one with more points, then the lower index.
   const auto hosts = [&pieces](int a, int b) {
     const WindowPiece& pa = pieces[static_cast<std::size_t>(a)];
     const WindowPiece& pb = pieces[static_cast<std::size_t>(b)];
@@ -88,29 +91,13 @@ std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double
     if (pa.num_points != pb.num_points) return pa.num_points > pb.num_points;
     return a < b;
   };
-  for (int a = 0; a < n; ++a) {
-    const WindowPiece& pa = pieces[static_cast<std::size_t>(a)];
-    if (!pa.window || pa.opening.wall < 0 || pa.opening.bounds.Empty()) continue;
-    for (int b = a + 1; b < n; ++b) {
-      const WindowPiece& pb = pieces[static_cast<std::size_t>(b)];
-      if (!pb.window || pb.opening.wall != pa.opening.wall || pb.opening.bounds.Empty()) continue;
-      const geometry::Aabb3& ba = pa.opening.bounds;
-      const geometry::Aabb3& bb = pb.opening.bounds;
-      const bool near = (ba.min_m.array() <= bb.max_m.array() + gap_m).all() &&
-                        (bb.min_m.array() <= ba.max_m.array() + gap_m).all();
-      if (!near) continue;
-      const int ra = find(a);
-      const int rb = find(b);
-      if (ra == rb) continue;
-      if (hosts(ra, rb)) {
-        root[static_cast<std::size_t>(rb)] = ra;
-      } else {
-        root[static_cast<std::size_t>(ra)] = rb;
-      }
-    }
+  std::vector<int> host_of_root(pieces.size(), -1);
+  for (int i = 0; i < n; ++i) {
+    int& host = host_of_root[static_cast<std::size_t>(windows.Find(i))];
+    if (host < 0 || hosts(i, host)) host = i;
   }
   std::vector<int> host(pieces.size());
-  for (int i = 0; i < n; ++i) host[static_cast<std::size_t>(i)] = find(i);
+  for (int i = 0; i < n; ++i) host[static_cast<std::size_t>(i)] = host_of_root[static_cast<std::size_t>(windows.Find(i))];
   return host;
 }
 

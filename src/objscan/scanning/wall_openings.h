@@ -77,9 +77,8 @@ struct WindowPiece {
 };
 
 // Windows in the opening of one wall whose boxes there lie within gap_m of each other (transitively)
-// form one window. Returns, per
-// piece, the piece it joins: the complete one if any, else the one with most points (lowest index on
-// ties); itself for pieces that stay (all of them when gap_m < 0).
+// form one window. Returns, per piece, the piece it joins: the complete one if any, else the one with
+// most points (lowest index on ties); itself for pieces that stay (all of them when gap_m < 0).
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m);
 
 }  // namespace objscan::scanning

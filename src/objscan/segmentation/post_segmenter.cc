@@ -7,6 +7,7 @@
 
 #include "objscan/common/config.h"
 #include "objscan/common/error.h"
+#include "objscan/common/union_find.h"
 
 namespace objscan::segmentation {
 
@@ -51,31 +52,6 @@ bool IsLabelCategory(world::Category c) {
   return id >= 0 && id < world::kNumObjectCategories;
 }
 
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(static_cast<std::size_t>(n)) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
-  int Find(int x) {
-    while (parent_[static_cast<std::size_t>(x)] != x) {
-      parent_[static_cast<std::size_t>(x)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(x)])];
-      x = parent_[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  // The smaller root becomes the parent, so roots (and therefore orderings) are deterministic.
-  int Union(int a, int b) {
-    a = Find(a);
-    b = Find(b);
-    if (a == b) return a;
-    if (b < a) std::swap(a, b);
-    parent_[static_cast<std::size_t>(b)] = a;
-    return a;
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 }  // namespace
 

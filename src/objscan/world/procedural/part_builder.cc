@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "objscan/common/union_find.h"
+
 namespace objscan::world::procedural {
 
 using Eigen::Vector3d;
@@ -96,23 +98,13 @@ void PartBuilder::Add(const geometry::TriangleMesh& part, const Eigen::Affine3d&
 
 int PartBuilder::NumConnectedGroups(double tolerance_m) const {
   const int n = static_cast<int>(part_bounds_.size());
-  std::vector<int> parent(n);
-  for (int i = 0; i < n; ++i) parent[i] = i;
-  auto find = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  UnionFind parts(n);
   int groups = n;
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
-      const auto& a = part_bounds_[i];
-      const auto& b = part_bounds_[j];
-      const bool touch = (a.min_m.array() <= b.max_m.array() + tolerance_m).all() &&
-                         (b.min_m.array() <= a.max_m.array() + tolerance_m).all();
-      if (!touch) continue;
-      const int ri = find(i), rj = find(j);
-      if (ri != rj) {
-        parent[ri] = rj;
+      if (!part_bounds_[i].Touches(part_bounds_[j], tolerance_m)) continue;
+      if (parts.Find(i) != parts.Find(j)) {
+        parts.Union(i, j);
         --groups;
       }
     }
