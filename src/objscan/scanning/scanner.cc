@@ -1044,6 +1044,31 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       if (best) s.Adopt(*best, &o);
     }
   }
+  // A door, or an unlabelled object, hanging over a window is a curtain (wall_openings.h).
+  if (openings.enabled && openings.curtain_max_distance_m >= 0.0) {
+    std::vector<OpeningExtent> windows;
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      const ObjectRecord& o = rec.objects[i];
+      if (host[i] != static_cast<int>(i) || o.category != world::Category::kWindow) continue;
+      const OpeningExtent w = OpeningBounds(s.ComponentPoints(o.labels), s.structure, openings);
+      if (w.wall >= 0) windows.push_back(w);
+    }
+    for (std::size_t i = 0; !windows.empty() && i < host.size(); ++i) {
+      ObjectRecord& o = rec.objects[i];
+      if (host[i] != static_cast<int>(i) || in_opening[i]) continue;
+      if (o.category && o.category != world::Category::kDoor) continue;
+      const OpeningExtent hanging =
+          HangingExtent(o.complete ? s.ComponentPoints(o.labels) : object_points[i], s.structure, openings);
+      if (!HangsOverWindow(hanging, windows, openings)) continue;
+      const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kCurtain);
+      if (!best) continue;
+      if (!o.wall_opening_relabelled) {
+        o.wall_opening_replaced_category = o.category;
+        o.wall_opening_relabelled = true;
+      }
+      s.Adopt(*best, &o);
+    }
+  }
   std::vector<ObjectRecord> kept;
   for (std::size_t i = 0; i < host.size(); ++i) {
     if (host[i] == static_cast<int>(i)) kept.push_back(std::move(rec.objects[i]));

@@ -11,6 +11,14 @@ namespace objscan::scanning {
 
 namespace {
 constexpr double kLowestQuantile = 0.02;
+
+void ExtendOnWall(const mapping::WallPlane& wall, const Eigen::Vector3d& p, OpeningExtent* extent) {
+  const double along = wall.Along(p);
+  extent->along_min_m = std::min(extent->along_min_m, along);
+  extent->along_max_m = std::max(extent->along_max_m, along);
+  extent->z_min_m = std::min(extent->z_min_m, p.z());
+  extent->z_max_m = std::max(extent->z_max_m, p.z());
+}
 }  // namespace
 
 void WallOpeningOptions::Validate() const {
@@ -22,6 +30,14 @@ void WallOpeningOptions::Validate() const {
                   "must be <= window_min_share");
   config::RequireNonNegative("scanner.wall_openings.min_sill_height_m", min_sill_height_m);
   config::Require(std::isfinite(join_gap_m), "scanner.wall_openings.join_gap_m", "must be finite");
+  config::Require(std::isfinite(curtain_max_distance_m), "scanner.wall_openings.curtain_max_distance_m",
+                  "must be finite");
+  config::RequireInRange("scanner.wall_openings.curtain_min_share", curtain_min_share, 0.0, 1.0);
+  config::RequireNonNegative("scanner.wall_openings.curtain_min_height_m", curtain_min_height_m);
+  config::RequireNonNegative("scanner.wall_openings.curtain_min_overlap_m", curtain_min_overlap_m);
+  config::RequireNonNegative("scanner.wall_openings.curtain_min_fold_depth_m", curtain_min_fold_depth_m);
+  config::Require(curtain_max_fold_depth_m >= curtain_min_fold_depth_m, "scanner.wall_openings.curtain_max_fold_depth_m",
+                  "must be >= curtain_min_fold_depth_m");
 }
 
 WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points_world,
@@ -65,10 +81,66 @@ OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, co
   const auto most = std::max_element(count.begin(), count.end());
   if (*most == 0) return extent;
   extent.wall = static_cast<int>(most - count.begin());
+  const mapping::WallPlane& wall = structure.walls[static_cast<std::size_t>(extent.wall)];
   for (std::size_t i = 0; i < points_world.size(); ++i) {
-    if (wall_of[i] == extent.wall) extent.bounds.Extend(points_world[i].cast<double>());
+    if (wall_of[i] != extent.wall) continue;
+    extent.bounds.Extend(points_world[i].cast<double>());
+    ExtendOnWall(wall, points_world[i].cast<double>(), &extent);
   }
   return extent;
+}
+
+OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
+                            const mapping::StructureResult& structure, const WallOpeningOptions& options) {
+  OpeningExtent extent;
+  if (!options.enabled || options.curtain_max_distance_m < 0.0 || points_world.empty()) return extent;
+  for (std::size_t w = 0; w < structure.walls.size(); ++w) {
+    const mapping::WallPlane& wall = structure.walls[w];
+    const auto hangs = [&](const Eigen::Vector3d& p) {
+      const double d = wall.SignedDistance(p), s = wall.Along(p);
+      return d >= -options.min_depth_m && d <= options.curtain_max_distance_m && s >= wall.span_min_m &&
+             s <= wall.span_max_m;
+    };
+    std::size_t near = 0;
+    for (const Eigen::Vector3f& p : points_world) near += hangs(p.cast<double>()) ? 1 : 0;
+    if (static_cast<double>(near) < options.curtain_min_share * static_cast<double>(points_world.size())) continue;
+    // Walls meet at corners, where an object may hang in front of two; the first that holds it wins.
+    extent.wall = static_cast<int>(w);
+    std::vector<double> distances;
+    distances.reserve(near);
+    for (const Eigen::Vector3f& pf : points_world) {
+      const Eigen::Vector3d p = pf.cast<double>();
+      if (!hangs(p)) continue;
+      ExtendOnWall(wall, p, &extent);
+      distances.push_back(wall.SignedDistance(p));
+    }
+    // The spread of the middle half: the depth of the folds of a pleated face (a flat one's is the
+    // sensor's noise and its panels').
+    const auto quartile = [&distances](double f) {
+      const auto it = distances.begin() + static_cast<std::ptrdiff_t>(f * static_cast<double>(distances.size() - 1));
+      std::nth_element(distances.begin(), it, distances.end());
+      return *it;
+    };
+    extent.fold_depth_m = quartile(0.75) - quartile(0.25);
+    break;
+  }
+  return extent;
+}
+
+bool HangsOverWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
+                     const WallOpeningOptions& options) {
+  if (!options.enabled || options.curtain_max_distance_m < 0.0 || hanging.wall < 0) return false;
+  if (hanging.z_max_m - hanging.z_min_m < options.curtain_min_height_m) return false;
+  if (hanging.fold_depth_m < options.curtain_min_fold_depth_m || hanging.fold_depth_m > options.curtain_max_fold_depth_m) {
+    return false;
+  }
+  for (const OpeningExtent& w : windows) {
+    if (w.wall != hanging.wall) continue;
+    const double along = std::min(w.along_max_m, hanging.along_max_m) - std::max(w.along_min_m, hanging.along_min_m);
+    const double height = std::min(w.z_max_m, hanging.z_max_m) - std::max(w.z_min_m, hanging.z_min_m);
+    if (along >= options.curtain_min_overlap_m && height > 0.0) return true;
+  }
+  return false;
 }
 
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m) {

@@ -4,7 +4,11 @@
 // it is a flat framed rectangle that retrieval confuses with the fronts of dressers, shelves and
 // refrigerators. At the end of a run, an object most of whose points lie in wall openings is
 // reported as a window (the window model that fits it best, with its pose), and an object labelled
-// window with almost none there loses that label.
+// window with almost none there loses that label. And curtains from where they hang: a tall flat
+// thing hanging just in front of a wall, over a window in it, is a curtain, however well a door or
+// window model fits its face (a curtain panel is a door-sized slab, and the database's pleats fall
+// elsewhere than the scanned ones, so a flat model fits it as well).
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +33,17 @@ struct WallOpeningOptions {
   // one window (frame, sashes and panes are pre-segmented apart, and each piece fits a window model);
   // they are reported as one. Negative = off (each piece is an object, as recognition left them).
   double join_gap_m = 0.1;
+  // An object labelled door, or left unlabelled, is a curtain when at least curtain_min_share of its
+  // points lie within curtain_max_distance_m in front of one wall (and not behind it), it is at
+  // least curtain_min_height_m tall, and it covers a window in that wall by curtain_min_overlap_m
+  // along the wall (and overlaps it in height). A door leaf hangs beside its opening, not over a
+  // window. Negative curtain_max_distance_m = off (labels from recognition alone).
+  double curtain_max_distance_m = 0.3;
+  double curtain_min_share = 0.9;
+  double curtain_min_height_m = 0.8;
+  double curtain_min_overlap_m = 0.1;
+  double curtain_min_fold_depth_m = 0.026;
+  double curtain_max_fold_depth_m = 0.1;
 
   template <class V>
   void Visit(V& v) {
@@ -39,6 +54,12 @@ struct WallOpeningOptions {
     v("window_keep_share", window_keep_share);
     v("min_sill_height_m", min_sill_height_m);
     v("join_gap_m", join_gap_m);
+    v("curtain_max_distance_m", curtain_max_distance_m);
+    v("curtain_min_share", curtain_min_share);
+    v("curtain_min_height_m", curtain_min_height_m);
+    v("curtain_min_overlap_m", curtain_min_overlap_m);
+    v("curtain_min_fold_depth_m", curtain_min_fold_depth_m);
+    v("curtain_max_fold_depth_m", curtain_max_fold_depth_m);
   }
   void Validate() const;
 };
@@ -64,6 +85,14 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
 struct OpeningExtent {
   int wall = -1;  // index into StructureResult::walls
   geometry::Aabb3 bounds;
+  // The same points' extent along that wall (mapping::WallPlane::Along) and in height.
+  double along_min_m = std::numeric_limits<double>::infinity();
+  double along_max_m = -std::numeric_limits<double>::infinity();
+  double z_min_m = std::numeric_limits<double>::infinity();
+  double z_max_m = -std::numeric_limits<double>::infinity();
+  // HangingExtent only: the interquartile range of the hanging points' distances from the wall
+  // plane, the depth of a pleated face's folds.
+  double fold_depth_m = 0.0;
 };
 OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, const mapping::StructureResult& structure,
                             const WallOpeningOptions& options);
@@ -80,5 +109,17 @@ struct WindowPiece {
 // form one window. Returns, per piece, the piece it joins: the complete one if any, else the one with
 // most points (lowest index on ties); itself for pieces that stay (all of them when gap_m < 0).
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m);
+
+// Where an object hangs in front of a wall: the wall (-1 for none) in front of which, by at most
+// curtain_max_distance_m and within its span, at least curtain_min_share of the points lie, and the
+// extent of those points along it and in height (the fields of OpeningExtent, bounds left empty).
+OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
+                            const mapping::StructureResult& structure, const WallOpeningOptions& options);
+
+// Whether an object hanging as `hanging` (HangingExtent) is a curtain over one of `windows` (their
+// OpeningBounds): tall enough, folded, on the same wall, overlapping one along the wall by
+// curtain_min_overlap_m and in height. False when curtains are off.
+bool HangsOverWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
+                     const WallOpeningOptions& options);
 
 }  // namespace objscan::scanning

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "objscan/mapping/planes.h"
@@ -103,6 +104,21 @@ TEST(WallOpeningTest, OptionsAreChecked) {
   o = WallOpeningOptions();
   o.join_gap_m = std::numeric_limits<double>::infinity();
   EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.curtain_max_distance_m = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.curtain_min_share = -0.1;
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.curtain_max_fold_depth_m = 0.01;
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.curtain_min_fold_depth_m = -0.1;
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.curtain_min_overlap_m = -0.1;
+  EXPECT_ANY_THROW(o.Validate());
   EXPECT_NO_THROW(WallOpeningOptions().Validate());
 }
 
@@ -187,6 +203,84 @@ TEST(WindowPiecesTest, OnlyWindowsJoinAndACompleteWindowHosts) {
   const std::vector<WindowPiece> corner = {Piece(1.0, 1.5, 0.9, 1.9, true, 400, false, 0),
                                            Piece(1.5, 2.0, 0.9, 1.9, true, 400, false, 1)};
   EXPECT_EQ(JoinWindowPieces(corner, 0.1), (std::vector<int>{0, 1}));
+}
+
+// A pleated panel hanging in front of the wall x = 0: a zig-zag between x0 - 4 cm and x0 + 4 cm,
+// pleats 10 cm wide, y in [y0, y1] 1 cm apart, z in [z0, z1] 2 cm apart.
+std::vector<Eigen::Vector3f> Pleats(double x0, double y0, double y1, double z0, double z1) {
+  std::vector<Eigen::Vector3f> points;
+  for (double y = y0; y <= y1 + 1e-9; y += 0.01) {
+    const double phase = std::fmod(y - y0 + 1e-9, 0.1) / 0.1;
+    const double x = x0 - 0.04 + 0.08 * (phase < 0.5 ? 2.0 * phase : 2.0 - 2.0 * phase);
+    for (double z = z0; z <= z1 + 1e-9; z += 0.02) points.emplace_back(x, y, z);
+  }
+  return points;
+}
+
+TEST(CurtainTest, APanelHangingOverAWindowIsACurtain) {
+  const mapping::StructureResult room = OneWallRoom();
+  const WallOpeningOptions options;
+  // A window recessed 6 cm, y in [1, 2], sill at 0.9 m; a floor-length panel 10 cm in front of the
+  // wall covering its left 30 cm and 40 cm of wall beside it.
+  const std::vector<OpeningExtent> windows = {OpeningBounds(Pane(-0.06, 1.0, 2.0, 0.9, 2.0), room, options)};
+  ASSERT_EQ(windows[0].wall, 0);
+  EXPECT_NEAR(windows[0].along_min_m, 1.0, 1e-6);
+  EXPECT_NEAR(windows[0].along_max_m, 2.0, 1e-6);
+  EXPECT_NEAR(windows[0].z_min_m, 0.9, 1e-6);
+  const OpeningExtent panel = HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options);
+  ASSERT_EQ(panel.wall, 0);
+  EXPECT_NEAR(panel.fold_depth_m, 0.045, 0.01);
+  EXPECT_NEAR(panel.along_min_m, 0.6, 1e-6);
+  EXPECT_NEAR(panel.along_max_m, 1.3, 1e-6);
+  EXPECT_NEAR(panel.z_max_m, 2.2, 1e-6);
+  EXPECT_TRUE(HangsOverWindow(panel, windows, options));
+  // A short curtain from the sill down a little: still over the window.
+  EXPECT_TRUE(HangsOverWindow(HangingExtent(Pleats(0.1, 0.8, 2.2, 0.8, 2.1), room, options), windows, options));
+  // Off: nothing hangs anywhere.
+  WallOpeningOptions off = options;
+  off.curtain_max_distance_m = -1.0;
+  EXPECT_EQ(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, off).wall, -1);
+  EXPECT_FALSE(HangsOverWindow(panel, windows, off));
+}
+
+TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
+  const mapping::StructureResult room = OneWallRoom();
+  const WallOpeningOptions options;
+  const std::vector<OpeningExtent> windows = {OpeningBounds(Pane(-0.06, 1.0, 2.0, 0.9, 2.0), room, options)};
+  // A flat door leaf, opened against the wall over the window: its face has no folds.
+  const OpeningExtent leaf = HangingExtent(Pane(0.05, 0.9, 1.7, 0.0, 2.05), room, options);
+  ASSERT_EQ(leaf.wall, 0);
+  EXPECT_NEAR(leaf.fold_depth_m, 0.0, 1e-6);
+  EXPECT_FALSE(HangsOverWindow(leaf, windows, options));
+  // Folded, but 5 cm beside the window, or overlapping it by 5 cm only (< curtain_min_overlap_m).
+  const OpeningExtent beside = HangingExtent(Pleats(0.1, 2.05, 2.9, 0.0, 2.05), room, options);
+  EXPECT_GT(beside.fold_depth_m, 0.02);
+  EXPECT_FALSE(HangsOverWindow(beside, windows, options));
+  EXPECT_FALSE(HangsOverWindow(HangingExtent(Pleats(0.1, 1.95, 2.8, 0.0, 2.05), room, options), windows, options));
+  // A cabinet 60 cm deep in front of the window: most of it stands farther than 30 cm from the wall.
+  std::vector<Eigen::Vector3f> cabinet = Pane(0.6, 1.0, 2.0, 0.0, 0.9);
+  Append(Pane(0.3, 1.0, 2.0, 0.9, 0.9), &cabinet);
+  EXPECT_EQ(HangingExtent(cabinet, room, options).wall, -1);
+  // Shelves 25 cm deep against the wall over the window: boards from the wall to 25 cm, a back
+  // board; their spread is that of a thing with depth, not of folds.
+  std::vector<Eigen::Vector3f> shelves = Pane(0.01, 1.2, 1.9, 0.0, 2.0);
+  for (double z : {0.4, 0.8, 1.2, 1.6, 2.0}) {
+    for (double x = 0.02; x <= 0.25 + 1e-9; x += 0.02) Append(Pane(x, 1.2, 1.9, z, z), &shelves);
+  }
+  Append(Pane(0.25, 1.2, 1.22, 0.0, 2.0), &shelves);
+  Append(Pane(0.25, 1.88, 1.9, 0.0, 2.0), &shelves);
+  const OpeningExtent shelf_extent = HangingExtent(shelves, room, options);
+  ASSERT_EQ(shelf_extent.wall, 0);
+  EXPECT_GT(shelf_extent.fold_depth_m, options.curtain_max_fold_depth_m);
+  EXPECT_FALSE(HangsOverWindow(shelf_extent, windows, options));
+  // A low folded thing against the wall reaching the sill (70 cm tall): not tall enough.
+  EXPECT_FALSE(HangsOverWindow(HangingExtent(Pleats(0.1, 1.0, 2.0, 0.3, 1.0), room, options), windows, options));
+  // Over the window's span but on another wall, or with no window at all.
+  OpeningExtent on_second = HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options);
+  ASSERT_TRUE(HangsOverWindow(on_second, windows, options));
+  on_second.wall = 1;
+  EXPECT_FALSE(HangsOverWindow(on_second, windows, options));
+  EXPECT_FALSE(HangsOverWindow(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options), {}, options));
 }
 
 }  // namespace
