@@ -266,8 +266,8 @@ void AddBenchCommand(CLI::App& root, RunFn* run) {
       ->capture_default_str();
   cmd->add_option("--seeds", args->seeds, "procedural suite: scenes per category")->capture_default_str();
   cmd->add_option("--first-seed", args->first_seed,
-                  "procedural suite: seed of the first scene of each category (4 for rooms the defaults were "
-                  "not tuned on)")
+                  "procedural suite: seed of the first scene of each category (10 for rooms no tuning has "
+                  "looked at)")
       ->capture_default_str();
   cmd->add_option("--set", args->sets, "override a config key of every run: key=value (repeatable)");
   cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
