@@ -103,7 +103,9 @@ OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
     };
     std::size_t near = 0;
     for (const Eigen::Vector3f& p : points_world) near += hangs(p.cast<double>()) ? 1 : 0;
-    if (static_cast<double>(near) < options.curtain_min_share * static_cast<double>(points_world.size())) continue;
+    if (near == 0 || static_cast<double>(near) < options.curtain_min_share * static_cast<double>(points_world.size())) {
+      continue;
+    }
     // Walls meet at corners, where an object may hang in front of two; the first that holds it wins.
     extent.wall = static_cast<int>(w);
     std::vector<double> distances;

@@ -4,10 +4,10 @@
 // it is a flat framed rectangle that retrieval confuses with the fronts of dressers, shelves and
 // refrigerators. At the end of a run, an object most of whose points lie in wall openings is
 // reported as a window (the window model that fits it best, with its pose), and an object labelled
-// window with almost none there loses that label. And curtains from where they hang: a tall flat
-// thing hanging just in front of a wall, over a window in it, is a curtain, however well a door or
-// window model fits its face (a curtain panel is a door-sized slab, and the database's pleats fall
-// elsewhere than the scanned ones, so a flat model fits it as well).
+// window with almost none there loses that label. And curtains from where they hang: a tall thing
+// with a folded face hanging just in front of a wall, over a window in it, is a curtain, however
+// well a door or window model fits its face (a curtain panel is a door-sized slab, and the
+// database's pleats fall elsewhere than the scanned ones, so a flat model fits it as well).
 #include <limits>
 #include <vector>
 
@@ -35,9 +35,12 @@ struct WallOpeningOptions {
   double join_gap_m = 0.1;
   // An object labelled door, or left unlabelled, is a curtain when at least curtain_min_share of its
   // points lie within curtain_max_distance_m in front of one wall (and not behind it), it is at
-  // least curtain_min_height_m tall, and it covers a window in that wall by curtain_min_overlap_m
-  // along the wall (and overlaps it in height). A door leaf hangs beside its opening, not over a
-  // window. Negative curtain_max_distance_m = off (labels from recognition alone).
+  // least curtain_min_height_m tall, its face is folded (the middle half of its points spread over
+  // curtain_min_fold_depth_m to curtain_max_fold_depth_m of distance from the wall: a door leaf
+  // opened over a window is flat, ~1 cm with its panels; more than the maximum is a thing with
+  // depth, such as shelves' boards and back), and it covers a window in that wall by
+  // curtain_min_overlap_m along the wall (and overlaps it in height). Negative
+  // curtain_max_distance_m = off (labels from recognition alone).
   double curtain_max_distance_m = 0.3;
   double curtain_min_share = 0.9;
   double curtain_min_height_m = 0.8;

@@ -261,6 +261,10 @@ TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
   std::vector<Eigen::Vector3f> cabinet = Pane(0.6, 1.0, 2.0, 0.0, 0.9);
   Append(Pane(0.3, 1.0, 2.0, 0.9, 0.9), &cabinet);
   EXPECT_EQ(HangingExtent(cabinet, room, options).wall, -1);
+  // No share required, but nothing near the wall: still no wall.
+  WallOpeningOptions any_share = options;
+  any_share.curtain_min_share = 0.0;
+  EXPECT_EQ(HangingExtent(Pane(0.6, 1.0, 2.0, 0.0, 0.9), room, any_share).wall, -1);
   // Shelves 25 cm deep against the wall over the window: boards from the wall to 25 cm, a back
   // board; their spread is that of a thing with depth, not of folds.
   std::vector<Eigen::Vector3f> shelves = Pane(0.01, 1.2, 1.9, 0.0, 2.0);
