@@ -963,6 +963,12 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     if (full_matches[i] == nullptr) continue;
     for (const auto& m : full_matches[i]->models) o.alternatives.push_back({m.category, s.ModelName(m.model_id), m.objectness});
   }
+  // The surface the robot saw of object i: a completed object stands for its model, so its
+  // components' points; an unfinished one's points as grouped above.
+  const auto seen_points = [&](std::size_t i) {
+    const ObjectRecord& o = rec.objects[i];
+    return o.complete ? s.ComponentPoints(o.labels) : object_points[i];
+  };
   // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
   const WallOpeningOptions& openings = s.config.scanner.wall_openings;
   std::vector<bool> in_opening(host.size(), false);
@@ -971,11 +977,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   for (std::size_t i = 0; openings.enabled && i < host.size(); ++i) {
     ObjectRecord& o = rec.objects[i];
     if (host[i] != static_cast<int>(i) || s.structure.walls.empty()) continue;
-    // A completed object stands for its model; what decides is the surface the robot saw of it.
-    const std::vector<Eigen::Vector3f> seen = o.complete ? s.ComponentPoints(o.labels) : std::vector<Eigen::Vector3f>();
     const bool window = o.category == world::Category::kWindow;
-    const WallOpeningResult opening =
-        ClassifyWallOpening(o.complete ? seen : object_points[i], s.structure, window, openings);
+    const WallOpeningResult opening = ClassifyWallOpening(seen_points(i), s.structure, window, openings);
     o.wall_opening_share = opening.share;
     in_opening[i] = opening.verdict == WallOpeningVerdict::kWindow;
     if (opening.verdict == WallOpeningVerdict::kNotWindow) {
@@ -1018,14 +1021,9 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       WindowPiece& piece = pieces[i];
       piece.window = true;
       piece.complete = o.complete;
-      if (o.complete) {
-        const std::vector<Eigen::Vector3f> seen = s.ComponentPoints(o.labels);
-        piece.opening = OpeningBounds(seen, s.structure, openings);
-        piece.num_points = seen.size();
-      } else {
-        piece.opening = OpeningBounds(object_points[i], s.structure, openings);
-        piece.num_points = object_points[i].size();
-      }
+      const std::vector<Eigen::Vector3f> seen = seen_points(i);
+      piece.opening = OpeningBounds(seen, s.structure, openings);
+      piece.num_points = seen.size();
     }
     const std::vector<int> joined = JoinWindowPieces(pieces, openings.join_gap_m);
     std::vector<bool> grew(host.size(), false);
@@ -1050,6 +1048,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     for (std::size_t i = 0; i < host.size(); ++i) {
       const ObjectRecord& o = rec.objects[i];
       if (host[i] != static_cast<int>(i) || o.category != world::Category::kWindow) continue;
+      // From its labels: a joined window's object_points hold only its host piece.
       const OpeningExtent w = OpeningBounds(s.ComponentPoints(o.labels), s.structure, openings);
       if (w.wall >= 0) windows.push_back(w);
     }
@@ -1057,8 +1056,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       ObjectRecord& o = rec.objects[i];
       if (host[i] != static_cast<int>(i) || in_opening[i]) continue;
       if (o.category && o.category != world::Category::kDoor) continue;
-      const OpeningExtent hanging =
-          HangingExtent(o.complete ? s.ComponentPoints(o.labels) : object_points[i], s.structure, openings);
+      const OpeningExtent hanging = HangingExtent(seen_points(i), s.structure, openings);
       if (!HangsOverWindow(hanging, windows, openings)) continue;
       const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kCurtain);
       if (!best) continue;

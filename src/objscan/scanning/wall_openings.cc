@@ -12,6 +12,14 @@ namespace objscan::scanning {
 namespace {
 constexpr double kLowestQuantile = 0.02;
 
+// The value at fraction f (in [0, 1]) of the sorted, non-empty values (reorders them).
+template <class T>
+T Quantile(double f, std::vector<T>* values) {
+  const auto it = values->begin() + static_cast<std::ptrdiff_t>(f * static_cast<double>(values->size() - 1));
+  std::nth_element(values->begin(), it, values->end());
+  return *it;
+}
+
 void ExtendOnWall(const mapping::WallPlane& wall, const Eigen::Vector3d& p, OpeningExtent* extent) {
   const double along = wall.Along(p);
   extent->along_min_m = std::min(extent->along_min_m, along);
@@ -55,10 +63,9 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
   result.share = static_cast<double>(in_openings) / static_cast<double>(points_world.size());
   // The lowest point but a few: strips of wall or floor left at an object's border do not make it
   // reach the floor.
-  const auto low = heights.begin() + static_cast<std::ptrdiff_t>(kLowestQuantile * (heights.size() - 1));
-  std::nth_element(heights.begin(), low, heights.end());
+  const double low = Quantile(kLowestQuantile, &heights);
   const double floor_z = structure.has_floor ? structure.floor_height_m : 0.0;
-  const bool off_floor = *low - floor_z >= options.min_sill_height_m;
+  const bool off_floor = low - floor_z >= options.min_sill_height_m;
   if (off_floor && result.share >= options.window_min_share) {
     result.verdict = WallOpeningVerdict::kWindow;
   } else if (labelled_window && result.share < options.window_keep_share) {
@@ -118,12 +125,7 @@ OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
     }
     // The spread of the middle half: the depth of the folds of a pleated face (a flat one's is the
     // sensor's noise and its panels').
-    const auto quartile = [&distances](double f) {
-      const auto it = distances.begin() + static_cast<std::ptrdiff_t>(f * static_cast<double>(distances.size() - 1));
-      std::nth_element(distances.begin(), it, distances.end());
-      return *it;
-    };
-    extent.fold_depth_m = quartile(0.75) - quartile(0.25);
+    extent.fold_depth_m = Quantile(0.75, &distances) - Quantile(0.25, &distances);
     break;
   }
   return extent;
