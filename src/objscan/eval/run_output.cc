@@ -103,6 +103,7 @@ std::string RunJson(const RunOutputInputs& in) {
       obj["wall_opening_replaced_category"] =
           o.wall_opening_replaced_category ? Json(world::CategoryName(*o.wall_opening_replaced_category)) : Json(nullptr);
     }
+    if (!o.completion_rejected_model.empty()) obj["completion_rejected_model"] = o.completion_rejected_model;
     obj["height_m"] = o.height_m;
     obj["footprint_diagonal_m"] = o.footprint_diagonal_m;
     if (!o.alternatives.empty()) {

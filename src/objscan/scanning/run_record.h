@@ -61,6 +61,9 @@ struct ObjectRecord {
   std::optional<double> wall_opening_share;
   std::optional<world::Category> wall_opening_replaced_category;
   bool wall_opening_relabelled = false;
+  // The model that completed it, when its seen surface outgrew that model and it is reported
+  // unfinished (scanner.completion_check); "" otherwise.
+  std::string completion_rejected_model;
   std::string model;                            // best database model name ("" when none)
   int model_index = -1;                         // into the database's models
   double objectness = 0.0;

@@ -18,6 +18,7 @@
 #include "objscan/planning/next_best_view.h"
 #include "objscan/recognition/component_matcher.h"
 #include "objscan/recognition/recognizer.h"
+#include "objscan/scanning/completion_check.h"
 #include "objscan/scanning/label_replacement.h"
 #include "objscan/scanning/size_regrouping.h"
 #include "objscan/scanning/wall_openings.h"
@@ -837,6 +838,9 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   std::vector<FragmentCandidate> candidates;
   // The full-model matches of each object (null for completed ones, which are their model).
   std::vector<const segmentation::MatchResult*> full_matches;
+  // Full-model matches of completed objects reported unfinished (completion_check.h).
+  std::vector<std::unique_ptr<segmentation::MatchResult>> reopened_matches;
+  const CompletionCheckOptions& completion_check = s.config.scanner.completion_check;
   for (const auto& c : s.completed) {
     ObjectRecord o;
     o.id = c.id;
@@ -847,8 +851,46 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.complete = true;
     o.T_world_model = c.model.T_world_model;
     o.labels = c.labels;
-    rec.objects.push_back(o);
     FragmentCandidate f;
+    if (completion_check.max_outside_share >= 0.0 && c.model.entry_id >= 0 &&
+        c.model.entry_id < static_cast<int>(s.database.entries().size())) {
+      std::vector<Eigen::Vector3f> seen = s.ComponentPoints(c.labels);
+      const auto& model_points = s.database.entries()[static_cast<std::size_t>(c.model.entry_id)].points;
+      if (ShareOutsideModelBox(seen, model_points, c.model.T_world_model, completion_check.margin_m) >
+          completion_check.max_outside_share) {
+        // Recognized again as a whole, and labelled as any unfinished object: its best full model's
+        // category when confident, else the label it had.
+        o.complete = false;
+        o.completion_rejected_model = o.model;
+        auto matches = std::make_unique<segmentation::MatchResult>(
+            s.matcher.Match(c.labels, segmentation::MatchScope::kFullModels));
+        if (!matches->models.empty()) {
+          const segmentation::ModelMatch& best = matches->models.front();
+          const std::optional<world::Category> label =
+              ModelLabel(o.category, &best, s.config.scanner.model_label_min_objectness);
+          if (label != o.category) {
+            o.model_labelled = true;
+            o.graph_cut_category = o.category;
+            o.category = label;
+          }
+          o.model_index = best.model_id;
+          o.model = s.ModelName(best.model_id);
+          o.T_world_model = best.T_world_model;
+          o.objectness = best.objectness;
+          s.SetModel(best, &f);
+        } else {
+          f.model_points = nullptr;
+        }
+        f.points_world = std::move(seen);
+        f.objectness = o.objectness;
+        rec.objects.push_back(o);
+        candidates.push_back(std::move(f));
+        full_matches.push_back(matches.get());
+        reopened_matches.push_back(std::move(matches));
+        continue;
+      }
+    }
+    rec.objects.push_back(o);
     for (auto l : c.labels) {
       if (const segmentation::Component* comp = s.segmenter_graph().Find(l)) f.num_points += comp->points.size();
     }

@@ -4,6 +4,7 @@
 
 #include "objscan/common/config.h"
 #include "objscan/recognition/category_extent.h"
+#include "objscan/scanning/completion_check.h"
 #include "objscan/scanning/fragment_absorption.h"
 #include "objscan/scanning/map_space_evidence.h"
 #include "objscan/scanning/wall_openings.h"
@@ -56,6 +57,9 @@ struct ScannerOptions {
   // procedural rooms, labels of objects whose best model scored below it were more often right than
   // the model (docs/results/procedural-3seeds-session13.md).
   double model_label_min_objectness = 0.93;
+  // Completed objects whose seen surface their model does not hold are reported unfinished
+  // (completion_check.h).
+  CompletionCheckOptions completion_check;
   // Pieces lying on a recognized neighbour's model are reported as part of it (fragment_absorption.h).
   FragmentAbsorptionOptions fragments;
   // Reported objects whose size no database model of their category has lose that label
@@ -90,6 +94,7 @@ struct ScannerOptions {
     v("structure_reveal_depth_m", structure_reveal_depth_m);
     v("structure_redetect_growth", structure_redetect_growth);
     v("model_label_min_objectness", model_label_min_objectness);
+    v("completion_check", completion_check);
     v("fragments", fragments);
     v("size_check", size_check);
     v("wall_openings", wall_openings);
@@ -116,6 +121,7 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_reveal_depth_m", structure_reveal_depth_m);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
     config::RequireNonNegative("scanner.model_label_min_objectness", model_label_min_objectness);
+    completion_check.Validate();
     fragments.Validate();
     size_check.Validate();
     wall_openings.Validate();

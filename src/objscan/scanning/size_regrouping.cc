@@ -54,6 +54,7 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
     int best_host = -1;
     world::Category best_category = world::Category::kOther;
     recognition::ObjectExtent best_extent;
+    bool best_host_joins_piece = false;
     for (int h : neighbors[static_cast<std::size_t>(piece)]) {
       if (!movable(h)) continue;
       std::vector<Eigen::Vector3f> joined = points[static_cast<std::size_t>(h)];
@@ -63,8 +64,16 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
       const world::Category piece_category = *out.category[static_cast<std::size_t>(piece)];
       const bool host_plausible = fits(extent[static_cast<std::size_t>(h)], host_category);
       std::optional<world::Category> category;
+      bool host_joins_piece = false;
       if (fits(e, host_category)) {
         category = host_category;
+      } else if (host_plausible && points[static_cast<std::size_t>(h)].size() < points[static_cast<std::size_t>(piece)].size()) {
+        // A plausible neighbour smaller than the piece may be a part of what the piece is (a table's
+        // legs apart from its top): the union keeps the piece's label when it fits it.
+        if (fits(e, piece_category)) {
+          category = piece_category;
+          host_joins_piece = true;
+        }
       } else if (!host_plausible) {
         std::vector<world::Category> options_in_order = {piece_category};
         if (recognize) {
@@ -86,27 +95,33 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
         best_host = h;
         best_category = *category;
         best_extent = e;
+        best_host_joins_piece = host_joins_piece;
       }
     }
     if (best_host < 0) {
       tried_and_stayed.insert(piece);
       continue;
     }
-    auto& into = points[static_cast<std::size_t>(best_host)];
-    into.insert(into.end(), points[static_cast<std::size_t>(piece)].begin(), points[static_cast<std::size_t>(piece)].end());
-    points[static_cast<std::size_t>(piece)] = {};
-    extent[static_cast<std::size_t>(best_host)] = best_extent;
-    out.category[static_cast<std::size_t>(best_host)] = best_category;
-    auto& merged_members = members[static_cast<std::size_t>(best_host)];
-    merged_members.insert(merged_members.end(), members[static_cast<std::size_t>(piece)].begin(),
-                          members[static_cast<std::size_t>(piece)].end());
-    for (int k : neighbors[static_cast<std::size_t>(piece)]) {
-      if (k == best_host) continue;
-      neighbors[static_cast<std::size_t>(best_host)].insert(k);
-      neighbors[static_cast<std::size_t>(k)].insert(best_host);
+    // `from` joins `into`: the piece joins its host, or the host joins the larger piece (whose
+    // record, model included, then stands for the union).
+    const int from = best_host_joins_piece ? best_host : piece;
+    const int into = best_host_joins_piece ? piece : best_host;
+    auto& into_points = points[static_cast<std::size_t>(into)];
+    into_points.insert(into_points.end(), points[static_cast<std::size_t>(from)].begin(),
+                       points[static_cast<std::size_t>(from)].end());
+    points[static_cast<std::size_t>(from)] = {};
+    extent[static_cast<std::size_t>(into)] = best_extent;
+    out.category[static_cast<std::size_t>(into)] = best_category;
+    auto& merged_members = members[static_cast<std::size_t>(into)];
+    merged_members.insert(merged_members.end(), members[static_cast<std::size_t>(from)].begin(),
+                          members[static_cast<std::size_t>(from)].end());
+    for (int k : neighbors[static_cast<std::size_t>(from)]) {
+      if (k == into) continue;
+      neighbors[static_cast<std::size_t>(into)].insert(k);
+      neighbors[static_cast<std::size_t>(k)].insert(into);
     }
     for (int i = 0; i < n; ++i) {
-      if (out.host[static_cast<std::size_t>(i)] == piece) out.host[static_cast<std::size_t>(i)] = best_host;
+      if (out.host[static_cast<std::size_t>(i)] == from) out.host[static_cast<std::size_t>(i)] = into;
     }
     ++out.merges;
     tried_and_stayed.clear();  // the host grew: pieces that stayed may fit now

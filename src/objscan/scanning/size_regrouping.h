@@ -34,7 +34,9 @@ struct RegroupResult {
 // adjacent object (`adjacency`: index pairs) with the most points among those whose union is
 // plausible for the host's category, or, when the host is implausible too, for the first category
 // of `recognize(members)` (the union's recognized categories, best first; members are indices into
-// `objects`) that it fits. Without `recognize`, the piece's own label is the only other choice.
+// `objects`) that it fits. Without `recognize`, the piece's own label is the only other choice. A
+// plausible host with fewer points than the piece is instead a part of it (a table's legs apart from
+// its top) when the union fits the piece's label: the host then joins the piece.
 using RecognizeUnion = std::function<std::vector<world::Category>(const std::vector<int>& members)>;
 RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& objects,
                                           const std::vector<std::pair<int, int>>& adjacency,

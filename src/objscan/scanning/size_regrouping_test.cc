@@ -84,6 +84,29 @@ TEST(RegroupTest, AUnionOfTwoImplausiblePiecesTakesTheRecognizedCategoryItFits) 
   EXPECT_EQ(alone.host, (std::vector<int>{0, 1}));
 }
 
+TEST(RegroupTest, ASmallerPlausibleNeighbourJoinsTheLargerPieceItCompletes) {
+  // A bed (2 x 1.2 x 0.6 m) in two pieces: its 0.15 m frame and mattress, labelled bed (too flat for
+  // one), and the box under one corner, plausible as the night stand it is labelled. Joined under
+  // the night stand's label the union is too large; under the bed's it fits. The box is smaller, so
+  // it joins the bed piece, whose record stands for the union.
+  std::vector<RegroupCandidate> objects(2);
+  objects[0].points_world = Box({0, 0, 0}, {0.4, 0.45, 0.45});
+  objects[0].category = Category::kNightStand;
+  objects[1].points_world = Box({0, 0, 0.45}, {2, 1.2, 0.6});
+  objects[1].category = Category::kBed;
+  ASSERT_LT(objects[0].points_world.size(), objects[1].points_world.size());
+  const RegroupResult r = RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), Options());
+  EXPECT_EQ(r.merges, 1);
+  EXPECT_EQ(r.host, (std::vector<int>{1, 1}));
+  ASSERT_TRUE(r.category[1].has_value());
+  EXPECT_EQ(*r.category[1], Category::kBed);
+  EXPECT_EQ(r.points_world[1].size(), objects[0].points_world.size() + objects[1].points_world.size());
+  EXPECT_TRUE(r.points_world[0].empty());
+  // When the union fits neither label, nothing moves.
+  objects[1].points_world = Box({0, 0, 0.45}, {3.5, 1.2, 0.6});
+  EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), Options()).merges, 0);
+}
+
 TEST(RegroupTest, PlausibleFixedUnrecognizedAndApartObjectsStay) {
   std::vector<RegroupCandidate> objects(4);
   objects[0].points_world = Box({0, 0, 0}, {0.4, 0.45, 0.5});  // a whole night stand
