@@ -1094,19 +1094,42 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       const OpeningExtent w = OpeningBounds(s.ComponentPoints(o.labels), s.structure, openings);
       if (w.wall >= 0) windows.push_back(w);
     }
+    // Per window, the curtains hanging over it, with their numbers of seen points.
+    std::map<int, std::vector<std::pair<std::size_t, std::size_t>>> panels;
     for (std::size_t i = 0; !windows.empty() && i < host.size(); ++i) {
       ObjectRecord& o = rec.objects[i];
       if (host[i] != static_cast<int>(i) || in_opening[i]) continue;
-      if (o.category && o.category != world::Category::kDoor) continue;
-      const OpeningExtent hanging = HangingExtent(seen_points(i), s.structure, openings);
-      if (!HangsOverWindow(hanging, windows, openings)) continue;
-      const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kCurtain);
-      if (!best) continue;
-      if (!o.wall_opening_relabelled) {
-        o.wall_opening_replaced_category = o.category;
-        o.wall_opening_relabelled = true;
+      if (o.category && o.category != world::Category::kDoor && o.category != world::Category::kCurtain) continue;
+      const std::vector<Eigen::Vector3f> seen = seen_points(i);
+      const int window = CurtainWindow(HangingExtent(seen, s.structure, openings), windows, openings);
+      if (window < 0) continue;
+      if (o.category != world::Category::kCurtain) {
+        const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kCurtain);
+        if (!best) continue;
+        if (!o.wall_opening_relabelled) {
+          o.wall_opening_replaced_category = o.category;
+          o.wall_opening_relabelled = true;
+        }
+        s.Adopt(*best, &o);
       }
-      s.Adopt(*best, &o);
+      panels[window].emplace_back(i, seen.size());
+    }
+    // The panels over one window are one curtain: a completed panel hosts, else the largest.
+    for (const auto& [window, over] : panels) {
+      if (!openings.join_curtain_panels || over.size() < 2) continue;
+      const auto better_host = [&](const std::pair<std::size_t, std::size_t>& a,
+                                   const std::pair<std::size_t, std::size_t>& b) {
+        const bool ca = rec.objects[a.first].complete, cb = rec.objects[b.first].complete;
+        if (ca != cb) return ca;
+        if (a.second != b.second) return a.second > b.second;
+        return a.first < b.first;
+      };
+      const std::size_t into = std::min_element(over.begin(), over.end(), better_host)->first;
+      for (const auto& [i, num_points] : over) {
+        if (i == into) continue;
+        join_labels(i, static_cast<int>(into));
+        host[i] = static_cast<int>(into);
+      }
     }
   }
   std::vector<ObjectRecord> kept;

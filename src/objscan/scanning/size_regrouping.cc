@@ -91,6 +91,11 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
         }
       }
       if (!category) continue;
+      // A neighbour that takes the piece is preferred to one that would join it.
+      if (best_host >= 0 && host_joins_piece != best_host_joins_piece) {
+        if (host_joins_piece) continue;
+        best_host = -1;
+      }
       if (best_host < 0 || points[static_cast<std::size_t>(h)].size() > points[static_cast<std::size_t>(best_host)].size()) {
         best_host = h;
         best_category = *category;

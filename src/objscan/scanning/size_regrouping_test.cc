@@ -102,6 +102,19 @@ TEST(RegroupTest, ASmallerPlausibleNeighbourJoinsTheLargerPieceItCompletes) {
   EXPECT_EQ(*r.category[1], Category::kBed);
   EXPECT_EQ(r.points_world[1].size(), objects[0].points_world.size() + objects[1].points_world.size());
   EXPECT_TRUE(r.points_world[0].empty());
+  // A neighbour that takes the piece comes first, though smaller: a sparse bed-sized piece labelled
+  // bed (eight corner points, plausible) takes the frame; the box stays a night stand.
+  objects.resize(3);
+  for (double x : {0.0, 2.0})
+    for (double y : {0.0, 1.2})
+      for (double z : {0.0, 0.5}) objects[2].points_world.emplace_back(x, y, z);
+  objects[2].category = Category::kBed;
+  const RegroupResult taken = RegroupImplausibleFragments(objects, {{0, 1}, {1, 2}}, Extents(), Options());
+  EXPECT_EQ(taken.merges, 1);
+  EXPECT_EQ(taken.host, (std::vector<int>{0, 2, 2}));
+  EXPECT_EQ(*taken.category[0], Category::kNightStand);
+  EXPECT_EQ(*taken.category[2], Category::kBed);
+  objects.resize(2);
   // When the union fits neither label, nothing moves.
   objects[1].points_world = Box({0, 0, 0.45}, {3.5, 1.2, 0.6});
   EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), Options()).merges, 0);

@@ -131,20 +131,26 @@ OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
   return extent;
 }
 
-bool HangsOverWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
-                     const WallOpeningOptions& options) {
-  if (!options.enabled || options.curtain_max_distance_m < 0.0 || hanging.wall < 0) return false;
-  if (hanging.z_max_m - hanging.z_min_m < options.curtain_min_height_m) return false;
+int CurtainWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
+                  const WallOpeningOptions& options) {
+  if (!options.enabled || options.curtain_max_distance_m < 0.0 || hanging.wall < 0) return -1;
+  if (hanging.z_max_m - hanging.z_min_m < options.curtain_min_height_m) return -1;
   if (hanging.fold_depth_m < options.curtain_min_fold_depth_m || hanging.fold_depth_m > options.curtain_max_fold_depth_m) {
-    return false;
+    return -1;
   }
-  for (const OpeningExtent& w : windows) {
+  for (std::size_t k = 0; k < windows.size(); ++k) {
+    const OpeningExtent& w = windows[k];
     if (w.wall != hanging.wall) continue;
     const double along = std::min(w.along_max_m, hanging.along_max_m) - std::max(w.along_min_m, hanging.along_min_m);
     const double height = std::min(w.z_max_m, hanging.z_max_m) - std::max(w.z_min_m, hanging.z_min_m);
-    if (along >= options.curtain_min_overlap_m && height > 0.0) return true;
+    if (along >= options.curtain_min_overlap_m && height > 0.0) return static_cast<int>(k);
   }
-  return false;
+  return -1;
+}
+
+bool HangsOverWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
+                     const WallOpeningOptions& options) {
+  return CurtainWindow(hanging, windows, options) >= 0;
 }
 
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m) {

@@ -47,6 +47,10 @@ struct WallOpeningOptions {
   double curtain_min_overlap_m = 0.1;
   double curtain_min_fold_depth_m = 0.026;
   double curtain_max_fold_depth_m = 0.1;
+  // Objects labelled curtain that hang over the same window (by the rule above) are the panels of
+  // one curtain and are reported as one, hosted like window pieces (a completed panel, else the
+  // largest). false = each panel is an object.
+  bool join_curtain_panels = true;
 
   template <class V>
   void Visit(V& v) {
@@ -63,6 +67,7 @@ struct WallOpeningOptions {
     v("curtain_min_overlap_m", curtain_min_overlap_m);
     v("curtain_min_fold_depth_m", curtain_min_fold_depth_m);
     v("curtain_max_fold_depth_m", curtain_max_fold_depth_m);
+    v("join_curtain_panels", join_curtain_panels);
   }
   void Validate() const;
 };
@@ -124,5 +129,8 @@ OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
 // curtain_min_overlap_m and in height. False when curtains are off.
 bool HangsOverWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
                      const WallOpeningOptions& options);
+// The index of the first of `windows` that HangsOverWindow finds the object over; -1 for none.
+int CurtainWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
+                  const WallOpeningOptions& options);
 
 }  // namespace objscan::scanning

@@ -243,6 +243,24 @@ TEST(CurtainTest, APanelHangingOverAWindowIsACurtain) {
   EXPECT_FALSE(HangsOverWindow(panel, windows, off));
 }
 
+TEST(CurtainTest, EachPanelNamesTheWindowItHangsOver) {
+  const mapping::StructureResult room = OneWallRoom();
+  const WallOpeningOptions options;
+  // Two windows in the wall: y in [1, 2] and y in [3, 3.8].
+  const std::vector<OpeningExtent> windows = {OpeningBounds(Pane(-0.06, 1.0, 2.0, 0.9, 2.0), room, options),
+                                              OpeningBounds(Pane(-0.06, 3.0, 3.8, 0.9, 2.0), room, options)};
+  // The two panels of the first window's curtain, drawn to its sides, and a panel over the second.
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options), windows, options), 0);
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 1.7, 2.4, 0.02, 2.2), room, options), windows, options), 0);
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 3.5, 3.95, 0.02, 2.2), room, options), windows, options), 1);
+  // Between the windows, overlapping neither by 10 cm: none.
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 1.95, 3.05, 0.02, 2.2), room, options), windows, options), -1);
+  // Off: none.
+  WallOpeningOptions off = options;
+  off.curtain_max_distance_m = -1.0;
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options), windows, off), -1);
+}
+
 TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
   const mapping::StructureResult room = OneWallRoom();
   const WallOpeningOptions options;
