@@ -836,7 +836,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   rec.objects.clear();
   // Fragment absorption candidates, parallel to rec.objects.
   std::vector<FragmentCandidate> candidates;
-  // The full-model matches of each object (null for completed ones, which are their model).
+  // The full-model matches of each object (null for completed ones, which are their model; those
+  // reopened below own theirs in reopened_matches).
   std::vector<const segmentation::MatchResult*> full_matches;
   // Full-model matches of completed objects reported unfinished (completion_check.h).
   std::vector<std::unique_ptr<segmentation::MatchResult>> reopened_matches;
@@ -878,8 +879,6 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
           o.T_world_model = best.T_world_model;
           o.objectness = best.objectness;
           s.SetModel(best, &f);
-        } else {
-          f.model_points = nullptr;
         }
         f.points_world = std::move(seen);
         f.objectness = o.objectness;
