@@ -413,6 +413,23 @@ struct Scanner::State {
     f->T_world_model = m.T_world_model;
   }
 
+  // An unfinished object with `best` as its best full model: its model and pose, and its label
+  // (ModelLabel: the model's category when confident, else the one it has, kept as
+  // graph_cut_category when replaced). Its objectness is the caller's.
+  void ReportBestModel(const segmentation::ModelMatch& best, ObjectRecord* o, FragmentCandidate* f) const {
+    const std::optional<world::Category> label =
+        ModelLabel(o->category, &best, config.scanner.model_label_min_objectness);
+    if (label != o->category) {
+      o->model_labelled = true;
+      o->graph_cut_category = o->category;
+      o->category = label;
+    }
+    o->model_index = best.model_id;
+    o->model = ModelName(best.model_id);
+    o->T_world_model = best.T_world_model;
+    SetModel(best, f);
+  }
+
   void UpdateStructure() {
     const double n = static_cast<double>(surface.size());
     if (structure_elements == 0 || n > (1.0 + config.scanner.structure_redetect_growth) * structure_elements) {
@@ -866,19 +883,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
         auto matches = std::make_unique<segmentation::MatchResult>(
             s.matcher.Match(c.labels, segmentation::MatchScope::kFullModels));
         if (!matches->models.empty()) {
-          const segmentation::ModelMatch& best = matches->models.front();
-          const std::optional<world::Category> label =
-              ModelLabel(o.category, &best, s.config.scanner.model_label_min_objectness);
-          if (label != o.category) {
-            o.model_labelled = true;
-            o.graph_cut_category = o.category;
-            o.category = label;
-          }
-          o.model_index = best.model_id;
-          o.model = s.ModelName(best.model_id);
-          o.T_world_model = best.T_world_model;
-          o.objectness = best.objectness;
-          s.SetModel(best, &f);
+          s.ReportBestModel(matches->models.front(), &o, &f);
+          o.objectness = matches->models.front().objectness;
         }
         f.points_world = std::move(seen);
         f.objectness = o.objectness;
@@ -911,19 +917,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     ObjectRecord o;
     o.id = r.component_ids.front();
     o.category = r.category;
-    if (const auto* best = r.best_model()) {
-      const std::optional<world::Category> label =
-          ModelLabel(o.category, best, s.config.scanner.model_label_min_objectness);
-      if (label != o.category) {
-        o.model_labelled = true;
-        o.graph_cut_category = o.category;
-        o.category = label;
-      }
-      o.model_index = best->model_id;
-      o.model = s.ModelName(best->model_id);
-      o.T_world_model = best->T_world_model;
-      s.SetModel(*best, &f);
-    }
+    if (const auto* best = r.best_model()) s.ReportBestModel(*best, &o, &f);
     o.objectness = r.objectness;
     o.given_up = s.given_up.count(o.id) > 0;
     o.labels = r.component_ids;
@@ -1093,8 +1087,9 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       const OpeningExtent w = OpeningBounds(s.ComponentPoints(o.labels), s.structure, openings);
       if (w.wall >= 0) windows.push_back(w);
     }
-    // Per window, the curtains hanging over it, with their numbers of seen points.
-    std::map<int, std::vector<std::pair<std::size_t, std::size_t>>> panels;
+    // Per object, the window its curtain hangs over (-1: none), and what hosting needs of it.
+    std::vector<int> window_of(host.size(), -1);
+    std::vector<WindowPiece> panels(host.size());
     for (std::size_t i = 0; !windows.empty() && i < host.size(); ++i) {
       ObjectRecord& o = rec.objects[i];
       if (host[i] != static_cast<int>(i) || in_opening[i]) continue;
@@ -1111,23 +1106,18 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
         }
         s.Adopt(*best, &o);
       }
-      panels[window].emplace_back(i, seen.size());
+      window_of[i] = window;
+      panels[i].complete = o.complete;
+      panels[i].num_points = seen.size();
     }
-    // The panels over one window are one curtain: a completed panel hosts, else the largest.
-    for (const auto& [window, over] : panels) {
-      if (!openings.join_curtain_panels || over.size() < 2) continue;
-      const auto better_host = [&](const std::pair<std::size_t, std::size_t>& a,
-                                   const std::pair<std::size_t, std::size_t>& b) {
-        const bool ca = rec.objects[a.first].complete, cb = rec.objects[b.first].complete;
-        if (ca != cb) return ca;
-        if (a.second != b.second) return a.second > b.second;
-        return a.first < b.first;
-      };
-      const std::size_t into = std::min_element(over.begin(), over.end(), better_host)->first;
-      for (const auto& [i, num_points] : over) {
-        if (i == into) continue;
-        join_labels(i, static_cast<int>(into));
-        host[i] = static_cast<int>(into);
+    // The panels over one window are one curtain, hosted like the pieces of a window.
+    if (openings.join_curtain_panels) {
+      const std::vector<int> joined = HostsOfGroups(window_of, panels);
+      for (std::size_t i = 0; i < host.size(); ++i) {
+        const int into = joined[i];
+        if (into == static_cast<int>(i)) continue;
+        join_labels(i, into);
+        host[i] = into;
       }
     }
   }

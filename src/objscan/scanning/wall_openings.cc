@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <map>
 
 #include "objscan/common/union_find.h"
 #include "objscan/mapping/planes.h"
@@ -165,7 +166,14 @@ std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double
       if (pa.opening.bounds.Touches(pb.opening.bounds, gap_m)) windows.Union(a, b);
     }
   }
-  // Each window's host: its complete piece first, then the one with more points, then the lower index.
+  std::vector<int> group(pieces.size());
+  for (int i = 0; i < n; ++i) group[static_cast<std::size_t>(i)] = windows.Find(i);
+  return HostsOfGroups(group, pieces);
+}
+
+std::vector<int> HostsOfGroups(const std::vector<int>& group, const std::vector<WindowPiece>& pieces) {
+  const int n = static_cast<int>(pieces.size());
+  // Whether a should host b: a complete piece first, then the one with more points, then the lower index.
   const auto hosts = [&pieces](int a, int b) {
     const WindowPiece& pa = pieces[static_cast<std::size_t>(a)];
     const WindowPiece& pb = pieces[static_cast<std::size_t>(b)];
@@ -173,13 +181,18 @@ std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double
     if (pa.num_points != pb.num_points) return pa.num_points > pb.num_points;
     return a < b;
   };
-  std::vector<int> host_of_root(pieces.size(), -1);
+  std::map<int, int> host_of_group;
   for (int i = 0; i < n; ++i) {
-    int& host = host_of_root[static_cast<std::size_t>(windows.Find(i))];
-    if (host < 0 || hosts(i, host)) host = i;
+    const int g = group[static_cast<std::size_t>(i)];
+    if (g < 0) continue;
+    const auto [it, first] = host_of_group.emplace(g, i);
+    if (!first && hosts(i, it->second)) it->second = i;
   }
   std::vector<int> host(pieces.size());
-  for (int i = 0; i < n; ++i) host[static_cast<std::size_t>(i)] = host_of_root[static_cast<std::size_t>(windows.Find(i))];
+  for (int i = 0; i < n; ++i) {
+    const int g = group[static_cast<std::size_t>(i)];
+    host[static_cast<std::size_t>(i)] = g < 0 ? i : host_of_group.at(g);
+  }
   return host;
 }
 

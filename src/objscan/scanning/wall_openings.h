@@ -48,8 +48,8 @@ struct WallOpeningOptions {
   double curtain_min_fold_depth_m = 0.026;
   double curtain_max_fold_depth_m = 0.1;
   // Objects labelled curtain that hang over the same window (by the rule above) are the panels of
-  // one curtain and are reported as one, hosted like window pieces (a completed panel, else the
-  // largest). false = each panel is an object.
+  // one curtain and are reported as one, hosted like window pieces (HostsOfGroups). false = each
+  // panel is an object.
   bool join_curtain_panels = true;
 
   template <class V>
@@ -117,6 +117,11 @@ struct WindowPiece {
 // form one window. Returns, per piece, the piece it joins: the complete one if any, else the one with
 // most points (lowest index on ties); itself for pieces that stay (all of them when gap_m < 0).
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m);
+
+// Per piece, the piece it joins when the pieces of each group (`group`, parallel to `pieces`; ids
+// >= 0, any values) are one object: the complete one if any, else the one with most points (lowest
+// index on ties); itself for pieces of group -1. Only `complete` and `num_points` are read.
+std::vector<int> HostsOfGroups(const std::vector<int>& group, const std::vector<WindowPiece>& pieces);
 
 // Where an object hangs in front of a wall: the wall (-1 for none) in front of which, by at most
 // curtain_max_distance_m and within its span, at least curtain_min_share of the points lie, and the

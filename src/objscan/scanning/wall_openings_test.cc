@@ -205,6 +205,17 @@ TEST(WindowPiecesTest, OnlyWindowsJoinAndACompleteWindowHosts) {
   EXPECT_EQ(JoinWindowPieces(corner, 0.1), (std::vector<int>{0, 1}));
 }
 
+TEST(WindowPiecesTest, EachGroupIsHostedByItsCompleteOrLargestPiece) {
+  std::vector<WindowPiece> pieces(6);
+  const std::vector<std::size_t> points = {300, 500, 200, 400, 400, 900};
+  for (std::size_t i = 0; i < pieces.size(); ++i) pieces[i].num_points = points[i];
+  pieces[2].complete = true;
+  // Group 7: 0, 1, 2 (2 is complete, though smallest); group 3: 3 and 4 (equal sizes: the lower
+  // index); 5 in no group stays, however large.
+  EXPECT_EQ(HostsOfGroups({7, 7, 7, 3, 3, -1}, pieces), (std::vector<int>{2, 2, 2, 3, 3, 5}));
+  EXPECT_EQ(HostsOfGroups({-1, -1, -1, -1, -1, -1}, pieces), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+}
+
 // A pleated panel hanging in front of the wall x = 0: a zig-zag between x0 - 4 cm and x0 + 4 cm,
 // pleats 10 cm wide, y in [y0, y1] 1 cm apart, z in [z0, z1] 2 cm apart.
 std::vector<Eigen::Vector3f> Pleats(double x0, double y0, double y1, double z0, double z1) {
