@@ -74,6 +74,8 @@ CategoryExtents CategoryExtents::FromDatabase(const ModelDatabase& database) {
 void SizePlausibilityOptions::Validate() const {
   config::RequireInRange("scanner.size_check.min_ratio", min_ratio, 0.0, 1.0);
   config::RequirePositive("scanner.size_check.adjacency_m", adjacency_m);
+  config::Require(std::isfinite(support_gap_m), "scanner.size_check.support_gap_m",
+                  "must be a number (negative = off)");
   config::RequireInRange("scanner.size_check.relabel_min_objectness", relabel_min_objectness, 0.0, 1.0);
   config::Require(max_ratio >= 1.0 && std::isfinite(max_ratio), "scanner.size_check.max_ratio",
                   "must be a finite number >= 1 (got " + std::to_string(max_ratio) + ")");

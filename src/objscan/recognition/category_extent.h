@@ -65,6 +65,10 @@ struct SizePlausibilityOptions {
   // union fits (scanning/size_regrouping.h).
   bool regroup = true;
   double adjacency_m = 0.05;  // pieces with points this close are adjacent for the regrouping
+  // Beyond that, a piece standing under another with at most this gap between the lower one's top
+  // and the upper one's bottom is adjacent to it (size_regrouping.h, ObjectsStandingUnder: a table
+  // top and its legs, apart by the unseen underside); negative = off.
+  double support_gap_m = 0.15;
 
   template <class V>
   void Visit(V& v) {
@@ -75,6 +79,7 @@ struct SizePlausibilityOptions {
     v("relabel_min_objectness", relabel_min_objectness);
     v("regroup", regroup);
     v("adjacency_m", adjacency_m);
+    v("support_gap_m", support_gap_m);
   }
   void Validate() const;
 };

@@ -951,7 +951,13 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       size_check.enabled ? recognition::CategoryExtents::FromDatabase(s.database) : recognition::CategoryExtents();
   if (size_check.enabled && size_check.regroup) {
     // Absorbed objects hold no points in object_points (they host nothing), so they touch nothing.
-    const std::vector<std::pair<int, int>> adjacency = ObjectsWithinDistance(object_points, size_check.adjacency_m);
+    std::vector<std::pair<int, int>> adjacency = ObjectsWithinDistance(object_points, size_check.adjacency_m);
+    if (size_check.support_gap_m >= 0.0) {
+      const auto stacked = ObjectsStandingUnder(object_points, size_check.support_gap_m, size_check.adjacency_m);
+      adjacency.insert(adjacency.end(), stacked.begin(), stacked.end());
+      std::sort(adjacency.begin(), adjacency.end());
+      adjacency.erase(std::unique(adjacency.begin(), adjacency.end()), adjacency.end());
+    }
     std::vector<RegroupCandidate> pieces(host.size());
     for (std::size_t i = 0; i < host.size(); ++i) {
       if (host[i] != static_cast<int>(i)) continue;

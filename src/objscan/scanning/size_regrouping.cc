@@ -55,6 +55,7 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
     world::Category best_category = world::Category::kOther;
     recognition::ObjectExtent best_extent;
     bool best_host_joins_piece = false;
+    bool best_preferred = false;  // the best host takes the piece (or is no mere part of it)
     for (int h : neighbors[static_cast<std::size_t>(piece)]) {
       if (!movable(h)) continue;
       std::vector<Eigen::Vector3f> joined = points[static_cast<std::size_t>(h)];
@@ -65,9 +66,18 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
       const bool host_plausible = fits(extent[static_cast<std::size_t>(h)], host_category);
       std::optional<world::Category> category;
       bool host_joins_piece = false;
-      if (fits(e, host_category)) {
+      const bool smaller_host = points[static_cast<std::size_t>(h)].size() < points[static_cast<std::size_t>(piece)].size();
+      // The host takes the piece: the union fits the host's label.
+      const bool takes = fits(e, host_category);
+      if (takes) {
         category = host_category;
-      } else if (host_plausible && points[static_cast<std::size_t>(h)].size() < points[static_cast<std::size_t>(piece)].size()) {
+        // When the union fits the piece's label too and the piece is the larger, the piece's label
+        // stands (a table top over a pedestal labelled sink is a table).
+        if (host_plausible && smaller_host && piece_category != host_category && fits(e, piece_category)) {
+          category = piece_category;
+          host_joins_piece = true;
+        }
+      } else if (host_plausible && smaller_host) {
         // A plausible neighbour smaller than the piece may be a part of what the piece is (a table's
         // legs apart from its top): the union keeps the piece's label when it fits it.
         if (fits(e, piece_category)) {
@@ -91,9 +101,10 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
         }
       }
       if (!category) continue;
-      // A neighbour that takes the piece is preferred to one that would join it.
-      if (best_host >= 0 && host_joins_piece != best_host_joins_piece) {
-        if (host_joins_piece) continue;
+      // A neighbour that takes the piece is preferred to one that would only join it.
+      const bool preferred = takes || !host_joins_piece;
+      if (best_host >= 0 && preferred != best_preferred) {
+        if (!preferred) continue;
         best_host = -1;
       }
       if (best_host < 0 || points[static_cast<std::size_t>(h)].size() > points[static_cast<std::size_t>(best_host)].size()) {
@@ -101,6 +112,7 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
         best_category = *category;
         best_extent = e;
         best_host_joins_piece = host_joins_piece;
+        best_preferred = preferred;
       }
     }
     if (best_host < 0) {
@@ -158,6 +170,43 @@ std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::ve
         }
   }
   return {pairs.begin(), pairs.end()};
+}
+
+std::vector<std::pair<int, int>> ObjectsStandingUnder(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
+                                                      double max_gap_m, double margin_m) {
+  struct Bounds {
+    Eigen::Vector3f lo, hi;
+  };
+  std::vector<Bounds> bounds(points_world.size());
+  std::vector<int> nonempty;
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    if (points_world[i].empty()) continue;
+    Bounds b{points_world[i].front(), points_world[i].front()};
+    for (const auto& p : points_world[i]) {
+      b.lo = b.lo.cwiseMin(p);
+      b.hi = b.hi.cwiseMax(p);
+    }
+    bounds[i] = b;
+    nonempty.push_back(static_cast<int>(i));
+  }
+  const float gap = static_cast<float>(max_gap_m), margin = static_cast<float>(margin_m);
+  // Whether object `lower` stands under object `upper`.
+  const auto under = [&](int lower, int upper) {
+    const Bounds& l = bounds[static_cast<std::size_t>(lower)];
+    const Bounds& u = bounds[static_cast<std::size_t>(upper)];
+    for (int k = 0; k < 2; ++k) {
+      if (l.lo[k] < u.lo[k] - margin || l.hi[k] > u.hi[k] + margin) return false;
+    }
+    return l.hi.z() >= u.lo.z() - gap && l.hi.z() <= 0.5f * (u.lo.z() + u.hi.z()) && l.lo.z() < u.lo.z();
+  };
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t a = 0; a < nonempty.size(); ++a) {
+    for (std::size_t b = a + 1; b < nonempty.size(); ++b) {
+      const int i = nonempty[a], j = nonempty[b];
+      if (under(i, j) || under(j, i)) pairs.emplace_back(i, j);
+    }
+  }
+  return pairs;
 }
 
 }  // namespace objscan::scanning

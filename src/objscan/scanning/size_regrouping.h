@@ -50,4 +50,12 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
 std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
                                                        double distance_m);
 
+// Index pairs (i < j) of objects of which one stands under the other: the lower one's footprint
+// (axis-aligned, grown by `margin_m`) lies within the upper one's and its top is at most `max_gap_m`
+// below the upper one's bottom (and not above the upper one's middle). A table top seen from above
+// and its legs or pedestal are apart by the underside no camera saw (5-15 cm); they are adjacent for
+// the regrouping all the same.
+std::vector<std::pair<int, int>> ObjectsStandingUnder(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
+                                                      double max_gap_m, double margin_m);
+
 }  // namespace objscan::scanning

@@ -120,6 +120,47 @@ TEST(RegroupTest, ASmallerPlausibleNeighbourJoinsTheLargerPieceItCompletes) {
   EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), Options()).merges, 0);
 }
 
+TEST(RegroupTest, WhenTheUnionFitsBothLabelsTheLargerPieceNamesIt) {
+  // A table top seen without its underside (1 x 0.8 m, 4 cm thick, 0.72 m up: too flat for a table)
+  // over its pedestal, labelled sink and plausible as one. The union fits a sink too, but the top
+  // holds more points: the pedestal joins the top and the union is a table.
+  recognition::CategoryExtents extents;
+  extents.Add(Category::kTable, {0.75, 1.4});
+  extents.Add(Category::kSink, {0.85, 1.0});
+  recognition::SizePlausibilityOptions options;
+  options.min_ratio = 0.5;
+  options.max_ratio = 1.4;
+  std::vector<RegroupCandidate> objects(2);
+  objects[0].points_world = Box({0, 0, 0.72}, {1.0, 0.8, 0.76});
+  objects[0].category = Category::kTable;
+  // The pedestal, seen from fewer views than the top: every other point.
+  const std::vector<Eigen::Vector3f> pedestal = Box({0.3, 0.2, 0}, {0.7, 0.6, 0.62});
+  for (std::size_t i = 0; i < pedestal.size(); i += 2) objects[1].points_world.push_back(pedestal[i]);
+  objects[1].category = Category::kSink;
+  ASSERT_GT(objects[0].points_world.size(), objects[1].points_world.size());
+  std::vector<Eigen::Vector3f> both = objects[0].points_world;
+  both.insert(both.end(), objects[1].points_world.begin(), objects[1].points_world.end());
+  const auto plausible = [&](const std::vector<Eigen::Vector3f>& points, Category c) {
+    return recognition::IsPlausibleExtent(recognition::MeasureExtent(points), extents.Find(c), options);
+  };
+  ASSERT_FALSE(plausible(objects[0].points_world, Category::kTable));
+  ASSERT_TRUE(plausible(objects[1].points_world, Category::kSink));
+  ASSERT_TRUE(plausible(both, Category::kSink));
+  ASSERT_TRUE(plausible(both, Category::kTable));
+  const RegroupResult r = RegroupImplausibleFragments(objects, {{0, 1}}, extents, options);
+  EXPECT_EQ(r.merges, 1);
+  EXPECT_EQ(r.host, (std::vector<int>{0, 0}));
+  ASSERT_TRUE(r.category[0].has_value());
+  EXPECT_EQ(*r.category[0], Category::kTable);
+  EXPECT_EQ(r.points_world[0].size(), both.size());
+  // The same top over a larger labelled box: that box's label names the union.
+  objects[1].points_world = Box({0, 0, 0}, {1.0, 0.8, 0.62});
+  ASSERT_GT(objects[1].points_world.size(), objects[0].points_world.size());
+  const RegroupResult larger = RegroupImplausibleFragments(objects, {{0, 1}}, extents, options);
+  EXPECT_EQ(larger.host, (std::vector<int>{1, 1}));
+  EXPECT_EQ(*larger.category[1], Category::kSink);
+}
+
 TEST(RegroupTest, PlausibleFixedUnrecognizedAndApartObjectsStay) {
   std::vector<RegroupCandidate> objects(4);
   objects[0].points_world = Box({0, 0, 0}, {0.4, 0.45, 0.5});  // a whole night stand
@@ -156,6 +197,20 @@ TEST(ObjectsWithinDistanceTest, PairsOfObjectsWithClosePoints) {
       {{0.21f, 0.01f, 0.f}}};
   const auto pairs = ObjectsWithinDistance(points, 0.05);
   EXPECT_EQ(pairs, (std::vector<std::pair<int, int>>{{0, 1}, {0, 3}, {1, 3}}));
+}
+
+
+TEST(ObjectsStandingUnderTest, APedestalUnderATableTopAcrossTheUnseenUnderside) {
+  const std::vector<std::vector<Eigen::Vector3f>> points = {
+      Box({0, 0, 0.72}, {1.0, 0.8, 0.76}),        // 0: a table top
+      Box({0.3, 0.2, 0}, {0.7, 0.6, 0.62}),       // 1: its pedestal, 10 cm below
+      Box({1.5, 0, 0}, {2.0, 0.5, 0.62}),         // 2: beside the table, not under it
+      Box({-0.5, -0.5, 0}, {1.5, 1.3, 0.3}),      // 3: under it but wider than the top
+      Box({0.1, 0.1, 0.77}, {0.3, 0.3, 0.9}),     // 4: a radio on the top: above it, not under
+      {}};                                         // 5: absorbed, no points
+  EXPECT_EQ(ObjectsStandingUnder(points, 0.15, 0.05), (std::vector<std::pair<int, int>>{{0, 1}}));
+  // A gap larger than allowed: apart.
+  EXPECT_TRUE(ObjectsStandingUnder(points, 0.05, 0.05).empty());
 }
 
 }  // namespace
