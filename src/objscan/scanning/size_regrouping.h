@@ -37,7 +37,8 @@ struct RegroupResult {
 // `objects`) that it fits. Without `recognize`, the piece's own label is the only other choice. A
 // plausible host with fewer points than the piece is instead a part of it (a table's legs apart from
 // its top) when the union fits the piece's label: the host then joins the piece, unless another
-// neighbour takes the piece by the rules before.
+// neighbour takes the piece by the rules before. When the union fits both the host's label and the
+// piece's and the host is plausible and smaller, the piece's label names it (the host joins the piece).
 using RecognizeUnion = std::function<std::vector<world::Category>(const std::vector<int>& members)>;
 RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& objects,
                                           const std::vector<std::pair<int, int>>& adjacency,
