@@ -18,10 +18,12 @@ struct PointCloud {
   bool HasNormals() const { return !points.empty() && normals.size() == points.size(); }
 };
 
-inline Aabb3 Bounds(const PointCloud& cloud) {
+inline Aabb3 Bounds(const std::vector<Eigen::Vector3f>& points) {
   Aabb3 box;
-  for (const auto& p : cloud.points) box.Extend(p.cast<double>());
+  for (const auto& p : points) box.Extend(p.cast<double>());
   return box;
 }
+
+inline Aabb3 Bounds(const PointCloud& cloud) { return Bounds(cloud.points); }
 
 }  // namespace objscan::geometry

@@ -4,6 +4,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "objscan/geometry/point_cloud.h"
 #include "objscan/geometry/voxel_key.h"
 
 namespace objscan::scanning {
@@ -174,30 +175,20 @@ std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::ve
 
 std::vector<std::pair<int, int>> ObjectsStandingUnder(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
                                                       double max_gap_m, double margin_m) {
-  struct Bounds {
-    Eigen::Vector3f lo, hi;
-  };
-  std::vector<Bounds> bounds(points_world.size());
+  std::vector<geometry::Aabb3> bounds;
   std::vector<int> nonempty;
   for (std::size_t i = 0; i < points_world.size(); ++i) {
-    if (points_world[i].empty()) continue;
-    Bounds b{points_world[i].front(), points_world[i].front()};
-    for (const auto& p : points_world[i]) {
-      b.lo = b.lo.cwiseMin(p);
-      b.hi = b.hi.cwiseMax(p);
-    }
-    bounds[i] = b;
-    nonempty.push_back(static_cast<int>(i));
+    bounds.push_back(geometry::Bounds(points_world[i]));
+    if (!points_world[i].empty()) nonempty.push_back(static_cast<int>(i));
   }
-  const float gap = static_cast<float>(max_gap_m), margin = static_cast<float>(margin_m);
   // Whether object `lower` stands under object `upper`.
   const auto under = [&](int lower, int upper) {
-    const Bounds& l = bounds[static_cast<std::size_t>(lower)];
-    const Bounds& u = bounds[static_cast<std::size_t>(upper)];
+    const geometry::Aabb3& l = bounds[static_cast<std::size_t>(lower)];
+    const geometry::Aabb3& u = bounds[static_cast<std::size_t>(upper)];
     for (int k = 0; k < 2; ++k) {
-      if (l.lo[k] < u.lo[k] - margin || l.hi[k] > u.hi[k] + margin) return false;
+      if (l.min_m[k] < u.min_m[k] - margin_m || l.max_m[k] > u.max_m[k] + margin_m) return false;
     }
-    return l.hi.z() >= u.lo.z() - gap && l.hi.z() <= 0.5f * (u.lo.z() + u.hi.z()) && l.lo.z() < u.lo.z();
+    return l.max_m.z() >= u.min_m.z() - max_gap_m && l.max_m.z() <= u.Center().z() && l.min_m.z() < u.min_m.z();
   };
   std::vector<std::pair<int, int>> pairs;
   for (std::size_t a = 0; a < nonempty.size(); ++a) {
