@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 #include "objscan/common/error.h"
@@ -1005,10 +1006,14 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     for (const auto& m : full_matches[i]->models) o.alternatives.push_back({m.category, s.ModelName(m.model_id), m.objectness});
   }
   // The surface the robot saw of object i: a completed object stands for its model, so its
-  // components' points; an unfinished one's points as grouped above.
-  const auto seen_points = [&](std::size_t i) {
+  // components' points (gathered once; again when its labels grow); an unfinished one's points as
+  // grouped above.
+  std::vector<std::optional<std::vector<Eigen::Vector3f>>> completed_seen(host.size());
+  const auto seen_points = [&](std::size_t i) -> const std::vector<Eigen::Vector3f>& {
     const ObjectRecord& o = rec.objects[i];
-    return o.complete ? s.ComponentPoints(o.labels) : object_points[i];
+    if (!o.complete) return object_points[i];
+    if (!completed_seen[i]) completed_seen[i] = s.ComponentPoints(o.labels);
+    return *completed_seen[i];
   };
   // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
   const WallOpeningOptions& openings = s.config.scanner.wall_openings;
@@ -1062,7 +1067,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       WindowPiece& piece = pieces[i];
       piece.window = true;
       piece.complete = o.complete;
-      const std::vector<Eigen::Vector3f> seen = seen_points(i);
+      const std::vector<Eigen::Vector3f>& seen = seen_points(i);
       piece.opening = OpeningBounds(seen, s.structure, openings);
       piece.num_points = seen.size();
     }
@@ -1072,6 +1077,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       const int into = joined[i];
       if (into == static_cast<int>(i)) continue;
       join_labels(i, into);
+      completed_seen[static_cast<std::size_t>(into)].reset();
       host[i] = into;
       grew[static_cast<std::size_t>(into)] = true;
     }
@@ -1100,7 +1106,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       ObjectRecord& o = rec.objects[i];
       if (host[i] != static_cast<int>(i) || in_opening[i]) continue;
       if (o.category && o.category != world::Category::kDoor && o.category != world::Category::kCurtain) continue;
-      const std::vector<Eigen::Vector3f> seen = seen_points(i);
+      const std::vector<Eigen::Vector3f>& seen = seen_points(i);
       const int window = CurtainWindow(HangingExtent(seen, s.structure, openings), windows, openings);
       if (window < 0) continue;
       if (o.category != world::Category::kCurtain) {
