@@ -149,11 +149,6 @@ int CurtainWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>
   return -1;
 }
 
-bool HangsOverWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
-                     const WallOpeningOptions& options) {
-  return CurtainWindow(hanging, windows, options) >= 0;
-}
-
 std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double gap_m) {
   const int n = static_cast<int>(pieces.size());
   UnionFind windows(n);

@@ -129,12 +129,9 @@ std::vector<int> HostsOfGroups(const std::vector<int>& group, const std::vector<
 OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
                             const mapping::StructureResult& structure, const WallOpeningOptions& options);
 
-// Whether an object hanging as `hanging` (HangingExtent) is a curtain over one of `windows` (their
-// OpeningBounds): tall enough, folded, on the same wall, overlapping one along the wall by
-// curtain_min_overlap_m and in height. False when curtains are off.
-bool HangsOverWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
-                     const WallOpeningOptions& options);
-// The index of the first of `windows` that HangsOverWindow finds the object over; -1 for none.
+// The window an object hanging as `hanging` (HangingExtent) is a curtain over: the index of the
+// first of `windows` (their OpeningBounds) it overlaps along the wall by curtain_min_overlap_m and in
+// height, on the same wall, when it is tall enough and folded; -1 for none, and when curtains are off.
 int CurtainWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
                   const WallOpeningOptions& options);
 

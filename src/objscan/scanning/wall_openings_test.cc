@@ -244,14 +244,14 @@ TEST(CurtainTest, APanelHangingOverAWindowIsACurtain) {
   EXPECT_NEAR(panel.along_min_m, 0.6, 1e-6);
   EXPECT_NEAR(panel.along_max_m, 1.3, 1e-6);
   EXPECT_NEAR(panel.z_max_m, 2.2, 1e-6);
-  EXPECT_TRUE(HangsOverWindow(panel, windows, options));
+  EXPECT_GE(CurtainWindow(panel, windows, options), 0);
   // A short curtain from the sill down a little: still over the window.
-  EXPECT_TRUE(HangsOverWindow(HangingExtent(Pleats(0.1, 0.8, 2.2, 0.8, 2.1), room, options), windows, options));
+  EXPECT_GE(CurtainWindow(HangingExtent(Pleats(0.1, 0.8, 2.2, 0.8, 2.1), room, options), windows, options), 0);
   // Off: nothing hangs anywhere.
   WallOpeningOptions off = options;
   off.curtain_max_distance_m = -1.0;
   EXPECT_EQ(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, off).wall, -1);
-  EXPECT_FALSE(HangsOverWindow(panel, windows, off));
+  EXPECT_EQ(CurtainWindow(panel, windows, off), -1);
 }
 
 TEST(CurtainTest, EachPanelNamesTheWindowItHangsOver) {
@@ -280,12 +280,12 @@ TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
   const OpeningExtent leaf = HangingExtent(Pane(0.05, 0.9, 1.7, 0.0, 2.05), room, options);
   ASSERT_EQ(leaf.wall, 0);
   EXPECT_NEAR(leaf.fold_depth_m, 0.0, 1e-6);
-  EXPECT_FALSE(HangsOverWindow(leaf, windows, options));
+  EXPECT_EQ(CurtainWindow(leaf, windows, options), -1);
   // Folded, but 5 cm beside the window, or overlapping it by 5 cm only (< curtain_min_overlap_m).
   const OpeningExtent beside = HangingExtent(Pleats(0.1, 2.05, 2.9, 0.0, 2.05), room, options);
   EXPECT_GT(beside.fold_depth_m, 0.02);
-  EXPECT_FALSE(HangsOverWindow(beside, windows, options));
-  EXPECT_FALSE(HangsOverWindow(HangingExtent(Pleats(0.1, 1.95, 2.8, 0.0, 2.05), room, options), windows, options));
+  EXPECT_EQ(CurtainWindow(beside, windows, options), -1);
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 1.95, 2.8, 0.0, 2.05), room, options), windows, options), -1);
   // A cabinet 60 cm deep in front of the window: most of it stands farther than 30 cm from the wall.
   std::vector<Eigen::Vector3f> cabinet = Pane(0.6, 1.0, 2.0, 0.0, 0.9);
   Append(Pane(0.3, 1.0, 2.0, 0.9, 0.9), &cabinet);
@@ -305,15 +305,15 @@ TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
   const OpeningExtent shelf_extent = HangingExtent(shelves, room, options);
   ASSERT_EQ(shelf_extent.wall, 0);
   EXPECT_GT(shelf_extent.fold_depth_m, options.curtain_max_fold_depth_m);
-  EXPECT_FALSE(HangsOverWindow(shelf_extent, windows, options));
+  EXPECT_EQ(CurtainWindow(shelf_extent, windows, options), -1);
   // A low folded thing against the wall reaching the sill (70 cm tall): not tall enough.
-  EXPECT_FALSE(HangsOverWindow(HangingExtent(Pleats(0.1, 1.0, 2.0, 0.3, 1.0), room, options), windows, options));
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 1.0, 2.0, 0.3, 1.0), room, options), windows, options), -1);
   // Over the window's span but on another wall, or with no window at all.
   OpeningExtent on_second = HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options);
-  ASSERT_TRUE(HangsOverWindow(on_second, windows, options));
+  ASSERT_GE(CurtainWindow(on_second, windows, options), 0);
   on_second.wall = 1;
-  EXPECT_FALSE(HangsOverWindow(on_second, windows, options));
-  EXPECT_FALSE(HangsOverWindow(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options), {}, options));
+  EXPECT_EQ(CurtainWindow(on_second, windows, options), -1);
+  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options), {}, options), -1);
 }
 
 }  // namespace
