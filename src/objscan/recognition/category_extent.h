@@ -69,6 +69,10 @@ struct SizePlausibilityOptions {
   // and the upper one's bottom is adjacent to it (size_regrouping.h, ObjectsStandingUnder: a table
   // top and its legs, apart by the unseen underside); negative = off.
   double support_gap_m = 0.15;
+  // After the regrouping, of two labelled pieces one standing under the other (by support_gap_m),
+  // the smaller joins the larger when the union fits the larger's label (size_regrouping.h,
+  // JoinStackedPieces: a lamp's shade taken for a radio over its stem); false = off.
+  bool join_stacked = true;
 
   template <class V>
   void Visit(V& v) {
@@ -80,6 +84,7 @@ struct SizePlausibilityOptions {
     v("regroup", regroup);
     v("adjacency_m", adjacency_m);
     v("support_gap_m", support_gap_m);
+    v("join_stacked", join_stacked);
   }
   void Validate() const;
 };

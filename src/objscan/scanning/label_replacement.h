@@ -13,8 +13,9 @@ namespace objscan::scanning {
 
 // The match (among `matches`, any order) whose category replaces `taken`: the highest objectness
 // among those of another category with objectness >= options.relabel_min_objectness whose extent
-// range admits `extent`, windows only when `in_wall_opening`. Null when none qualifies or when
-// options.relabel (or options.enabled) is off.
+// range admits `extent`, windows only when `in_wall_opening`, never a curtain: a curtain hangs over a
+// window, and the scanner's curtain check names those (one that hangs over none is a guess). Null
+// when none qualifies or when options.relabel (or options.enabled) is off.
 const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const segmentation::MatchResult& matches,
                                                  const recognition::ObjectExtent& extent, bool in_wall_opening,
                                                  const recognition::CategoryExtents& extents,

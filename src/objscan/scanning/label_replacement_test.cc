@@ -79,6 +79,19 @@ TEST(ReplacementLabelTest, WindowsOnlyInWallOpenings) {
   EXPECT_EQ(r->category, Category::kWindow);
 }
 
+TEST(ReplacementLabelTest, NeverACurtain) {
+  // A curtain hangs over a window: the scanner's curtain check names those, so a replacement never
+  // does, however confident; the next qualifying match wins instead.
+  const recognition::ObjectExtent extent{1.3, 1.0};
+  segmentation::MatchResult matches;
+  matches.models = {Match(Category::kCurtain, 0.97)};
+  EXPECT_EQ(ReplacementLabel(Category::kWindow, matches, extent, false, Extents(), Options()), nullptr);
+  matches.models.push_back(Match(Category::kShelves, 0.93));
+  const auto* r = ReplacementLabel(Category::kWindow, matches, extent, false, Extents(), Options());
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->category, Category::kShelves);
+}
+
 TEST(ReplacementLabelTest, OffMeansNoReplacement) {
   segmentation::MatchResult matches;
   matches.models = {Match(Category::kMonitor, 0.99)};

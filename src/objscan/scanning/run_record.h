@@ -57,12 +57,14 @@ struct ObjectRecord {
   // The label it had before the size check found no model of that category its size (nullopt: kept).
   std::optional<world::Category> size_rejected_category;
   // Share of its points in wall openings (when walls are known), and the label recognition gave it
-  // when that share made it a window or took its window label (scanner.wall_openings).
+  // when that share made it a window or took its window label, or when it was too deep for the door
+  // it was labelled (scanner.wall_openings).
   std::optional<double> wall_opening_share;
   std::optional<world::Category> wall_opening_replaced_category;
   bool wall_opening_relabelled = false;
-  // The model that completed it, when its seen surface outgrew that model and it is reported
-  // unfinished (scanner.completion_check); "" otherwise.
+  // The model that completed it, when it is reported unfinished all the same: its seen surface
+  // outgrew that model (scanner.completion_check), or the model is a door and what was seen of it is
+  // too deep for one (scanner.wall_openings.door_max_depth_m); "" otherwise.
   std::string completion_rejected_model;
   std::string model;                            // best database model name ("" when none)
   int model_index = -1;                         // into the database's models

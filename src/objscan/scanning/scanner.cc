@@ -871,12 +871,21 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.T_world_model = c.model.T_world_model;
     o.labels = c.labels;
     FragmentCandidate f;
-    if (completion_check.max_outside_share >= 0.0 && c.model.entry_id >= 0 &&
-        c.model.entry_id < static_cast<int>(s.database.entries().size())) {
+    const bool check_outgrown = completion_check.max_outside_share >= 0.0 && c.model.entry_id >= 0 &&
+                                c.model.entry_id < static_cast<int>(s.database.entries().size());
+    // A completed door too deep to be one (wall_openings.h, TooDeepForADoor) is reported unfinished;
+    // its door label is taken below.
+    const bool check_door = c.model.category == world::Category::kDoor && s.config.scanner.wall_openings.enabled &&
+                            s.config.scanner.wall_openings.door_max_depth_m >= 0.0;
+    if (check_outgrown || check_door) {
       std::vector<Eigen::Vector3f> seen = s.ComponentPoints(c.labels);
-      const auto& model_points = s.database.entries()[static_cast<std::size_t>(c.model.entry_id)].points;
-      if (ShareOutsideModelBox(seen, model_points, c.model.T_world_model, completion_check.margin_m) >
-          completion_check.max_outside_share) {
+      bool reopen = check_door && TooDeepForADoor(seen, s.config.scanner.wall_openings);
+      if (!reopen && check_outgrown) {
+        const auto& model_points = s.database.entries()[static_cast<std::size_t>(c.model.entry_id)].points;
+        reopen = ShareOutsideModelBox(seen, model_points, c.model.T_world_model, completion_check.margin_m) >
+                 completion_check.max_outside_share;
+      }
+      if (reopen) {
         // Recognized again as a whole, and labelled as any unfinished object: its best full model's
         // category when confident, else the label it had.
         o.complete = false;
@@ -994,6 +1003,24 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       host[i] = into;
     }
   }
+  if (size_check.enabled && size_check.join_stacked && size_check.support_gap_m >= 0.0) {
+    std::vector<RegroupCandidate> pieces(host.size());
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      if (host[i] != static_cast<int>(i)) continue;
+      pieces[i].points_world = std::move(object_points[i]);
+      pieces[i].category = rec.objects[i].complete ? std::nullopt : rec.objects[i].category;
+      pieces[i].fixed = rec.objects[i].complete;
+    }
+    RegroupResult stacked =
+        JoinStackedPieces(pieces, size_check.support_gap_m, size_check.adjacency_m, category_extents, size_check);
+    object_points = std::move(stacked.points_world);
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      const int into = stacked.host[i];
+      if (host[i] != static_cast<int>(i) || into == static_cast<int>(i)) continue;
+      join_labels(i, into);
+      host[i] = into;
+    }
+  }
   // The size of what was seen of each object (the size check below compares it with the models').
   std::vector<recognition::ObjectExtent> extents(host.size());
   for (std::size_t i = 0; i < host.size(); ++i) {
@@ -1015,11 +1042,21 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     if (!completed_seen[i]) completed_seen[i] = s.ComponentPoints(o.labels);
     return *completed_seen[i];
   };
-  // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
   const WallOpeningOptions& openings = s.config.scanner.wall_openings;
-  std::vector<bool> in_opening(host.size(), false);
   // The label each check took from an object (size_check.relabel may replace it below).
   std::vector<std::optional<world::Category>> taken(host.size());
+  // Door labels on things too deep for a door leaf go (wall_openings.h, TooDeepForADoor).
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    ObjectRecord& o = rec.objects[i];
+    if (host[i] != static_cast<int>(i) || o.complete || o.category != world::Category::kDoor) continue;
+    if (!TooDeepForADoor(seen_points(i), openings)) continue;
+    o.wall_opening_replaced_category = o.category;
+    o.wall_opening_relabelled = true;
+    taken[i] = o.category;
+    o.category.reset();
+  }
+  // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
+  std::vector<bool> in_opening(host.size(), false);
   for (std::size_t i = 0; openings.enabled && i < host.size(); ++i) {
     ObjectRecord& o = rec.objects[i];
     if (host[i] != static_cast<int>(i) || s.structure.walls.empty()) continue;

@@ -147,6 +147,43 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
   return out;
 }
 
+RegroupResult JoinStackedPieces(const std::vector<RegroupCandidate>& objects, double max_gap_m, double margin_m,
+                                const recognition::CategoryExtents& extents,
+                                const recognition::SizePlausibilityOptions& options) {
+  const int n = static_cast<int>(objects.size());
+  RegroupResult out;
+  for (int i = 0; i < n; ++i) {
+    out.host.push_back(i);
+    out.category.push_back(objects[static_cast<std::size_t>(i)].category);
+    out.points_world.push_back(objects[static_cast<std::size_t>(i)].points_world);
+  }
+  if (!options.enabled) return out;
+  const auto joinable = [&](int i) {
+    const RegroupCandidate& o = objects[static_cast<std::size_t>(i)];
+    if (out.host[static_cast<std::size_t>(i)] != i || o.fixed || !o.category) return false;
+    return *o.category != world::Category::kWindow && *o.category != world::Category::kDoor &&
+           *o.category != world::Category::kCurtain;
+  };
+  for (const auto& [a, b] : ObjectsStandingUnder(out.points_world, max_gap_m, margin_m)) {
+    if (!joinable(a) || !joinable(b) || objects[static_cast<std::size_t>(a)].category == objects[static_cast<std::size_t>(b)].category) {
+      continue;
+    }
+    // Ties go to the lower index, so the outcome does not depend on anything but the input.
+    const bool a_larger = out.points_world[static_cast<std::size_t>(a)].size() >= out.points_world[static_cast<std::size_t>(b)].size();
+    const int into = a_larger ? a : b, from = a_larger ? b : a;
+    std::vector<Eigen::Vector3f> joined = out.points_world[static_cast<std::size_t>(into)];
+    const auto& from_points = out.points_world[static_cast<std::size_t>(from)];
+    joined.insert(joined.end(), from_points.begin(), from_points.end());
+    const world::Category label = *objects[static_cast<std::size_t>(into)].category;
+    if (!recognition::IsPlausibleExtent(recognition::MeasureExtent(joined), extents.Find(label), options)) continue;
+    out.points_world[static_cast<std::size_t>(into)] = std::move(joined);
+    out.points_world[static_cast<std::size_t>(from)].clear();
+    out.host[static_cast<std::size_t>(from)] = into;
+    ++out.merges;
+  }
+  return out;
+}
+
 std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
                                                        double distance_m) {
   const float inv = static_cast<float>(1.0 / std::max(1e-6, distance_m));

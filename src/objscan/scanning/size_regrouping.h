@@ -46,6 +46,16 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
                                           const recognition::SizePlausibilityOptions& options,
                                           const RecognizeUnion& recognize = nullptr);
 
+// Beyond the regrouping, for pieces plausible on their own: of two labelled pieces of which one stands
+// under the other (ObjectsStandingUnder), the one with fewer points joins the other when the union
+// fits the larger one's label, which then names it: a lamp's shade recognized as a radio over its
+// stem and base, a chair's legs recognized as a night stand under its seat. Unlabelled and fixed
+// pieces never join, nor do windows, doors and curtains (they hang in or on walls, and furniture
+// stands in front of them). One pass over the pairs, in order; a piece joins at most once.
+RegroupResult JoinStackedPieces(const std::vector<RegroupCandidate>& objects, double max_gap_m, double margin_m,
+                                const recognition::CategoryExtents& extents,
+                                const recognition::SizePlausibilityOptions& options);
+
 // Index pairs (i < j) of objects with points within about `distance_m` of each other (points in the
 // same or neighbouring cells of a grid of that size).
 std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::vector<Eigen::Vector3f>>& points_world,

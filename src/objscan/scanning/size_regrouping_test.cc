@@ -213,5 +213,46 @@ TEST(ObjectsStandingUnderTest, APedestalUnderATableTopAcrossTheUnseenUnderside) 
   EXPECT_TRUE(ObjectsStandingUnder(points, 0.05, 0.05).empty());
 }
 
+TEST(JoinStackedPiecesTest, AShadeTakenForARadioJoinsTheLampStandingUnderIt) {
+  recognition::CategoryExtents extents = Extents();
+  extents.Add(Category::kLamp, {1.4, 0.4});
+  extents.Add(Category::kLamp, {1.7, 0.5});
+  extents.Add(Category::kRadio, {0.2, 0.4});
+  extents.Add(Category::kRadio, {0.3, 0.6});
+  std::vector<RegroupCandidate> objects(10);
+  const auto put = [&](int i, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::optional<Category> c) {
+    objects[static_cast<std::size_t>(i)].points_world = Box(lo, hi);
+    objects[static_cast<std::size_t>(i)].category = c;
+  };
+  // A lamp: stem and base labelled lamp (the larger piece), its shade 5 cm above labelled radio.
+  put(0, {0.05, 0.05, 0}, {0.35, 0.35, 1.2}, Category::kLamp);
+  put(1, {0, 0, 1.25}, {0.4, 0.4, 1.5}, Category::kRadio);
+  // A radio on a night stand: it stands on it, not over it; both stay.
+  put(2, {1, 0, 0}, {1.4, 0.45, 0.5}, Category::kNightStand);
+  put(3, {1.1, 0.1, 0.5}, {1.3, 0.3, 0.7}, Category::kRadio);
+  // The same stack with a door label below: doors never join.
+  put(4, {3.05, 0.05, 0}, {3.35, 0.35, 1.2}, Category::kDoor);
+  put(5, {3, 0, 1.25}, {3.4, 0.4, 1.5}, Category::kRadio);
+  // The same stack with the stem replaced by its model (fixed): it stays.
+  put(6, {4.05, 0.05, 0}, {4.35, 0.35, 1.2}, Category::kLamp);
+  objects[6].fixed = true;
+  put(7, {4, 0, 1.25}, {4.4, 0.4, 1.5}, Category::kRadio);
+  // A thin stem (fewer points) under a shade labelled radio: the union, 1.5 m tall, is no radio.
+  put(8, {5.15, 0.15, 0}, {5.25, 0.25, 1.2}, Category::kLamp);
+  put(9, {5, 0, 1.25}, {5.4, 0.4, 1.5}, Category::kRadio);
+  ASSERT_GT(objects[0].points_world.size(), objects[1].points_world.size());
+  ASSERT_LT(objects[8].points_world.size(), objects[9].points_world.size());
+  const RegroupResult r = JoinStackedPieces(objects, 0.15, 0.05, extents, Options());
+  EXPECT_EQ(r.merges, 1);
+  EXPECT_EQ(r.host, (std::vector<int>{0, 0, 2, 3, 4, 5, 6, 7, 8, 9}));
+  EXPECT_EQ(r.category[0], Category::kLamp);
+  EXPECT_EQ(r.points_world[0].size(), objects[0].points_world.size() + objects[1].points_world.size());
+  EXPECT_TRUE(r.points_world[1].empty());
+  // Off: nothing joins.
+  recognition::SizePlausibilityOptions off = Options();
+  off.enabled = false;
+  EXPECT_EQ(JoinStackedPieces(objects, 0.15, 0.05, extents, off).merges, 0);
+}
+
 }  // namespace
 }  // namespace objscan::scanning

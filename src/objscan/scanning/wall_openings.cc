@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <map>
 
 #include "objscan/common/union_find.h"
@@ -47,6 +48,32 @@ void WallOpeningOptions::Validate() const {
   config::RequireNonNegative("scanner.wall_openings.curtain_min_fold_depth_m", curtain_min_fold_depth_m);
   config::Require(curtain_max_fold_depth_m >= curtain_min_fold_depth_m, "scanner.wall_openings.curtain_max_fold_depth_m",
                   "must be >= curtain_min_fold_depth_m");
+  config::Require(std::isfinite(door_max_depth_m), "scanner.wall_openings.door_max_depth_m",
+                  "must be a number (negative = off)");
+}
+
+double MinHorizontalWidth(const std::vector<Eigen::Vector3f>& points_world) {
+  if (points_world.empty()) return 0.0;
+  constexpr int kSteps = 180;  // directions 1° apart over half a turn
+  const double kPi = 3.14159265358979323846;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < kSteps; ++k) {
+    const double yaw = kPi * k / kSteps;
+    const float c = static_cast<float>(std::cos(yaw)), sn = static_cast<float>(std::sin(yaw));
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const Eigen::Vector3f& p : points_world) {
+      const float u = c * p.x() + sn * p.y();
+      lo = std::min(lo, u);
+      hi = std::max(hi, u);
+    }
+    best = std::min(best, static_cast<double>(hi - lo));
+  }
+  return best;
+}
+
+bool TooDeepForADoor(const std::vector<Eigen::Vector3f>& points_world, const WallOpeningOptions& options) {
+  if (!options.enabled || options.door_max_depth_m < 0.0 || points_world.empty()) return false;
+  return MinHorizontalWidth(points_world) > options.door_max_depth_m;
 }
 
 WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points_world,

@@ -7,7 +7,8 @@
 // window with almost none there loses that label. And curtains from where they hang: a tall thing
 // with a folded face hanging just in front of a wall, over a window in it, is a curtain, however
 // well a door or window model fits its face (a curtain panel is a door-sized slab, and the
-// database's pleats fall elsewhere than the scanned ones, so a flat model fits it as well).
+// database's pleats fall elsewhere than the scanned ones, so a flat model fits it as well). And
+// doors by their depth: a door model fits any flat face, but a door leaf is thin.
 #include <limits>
 #include <vector>
 
@@ -51,6 +52,13 @@ struct WallOpeningOptions {
   // one curtain and are reported as one, hosted like window pieces (HostsOfGroups). false = each
   // panel is an object.
   bool join_curtain_panels = true;
+  // Doors by their depth: a door leaf is a slab a few centimetres thick (with its handles and what of
+  // the wall beside it joins it, under 0.35 m), and what the robot sees of it lies in such a slab; a
+  // door label on an object whose seen surface is wider than door_max_depth_m in every horizontal
+  // direction goes (a flat door model fits any flat face, such as a cabinet's front, and the sides
+  // and top seen later make it 0.4-0.6 m deep), and a completed door that deep is reported
+  // unfinished. Negative = off.
+  double door_max_depth_m = 0.4;
 
   template <class V>
   void Visit(V& v) {
@@ -68,6 +76,7 @@ struct WallOpeningOptions {
     v("curtain_min_fold_depth_m", curtain_min_fold_depth_m);
     v("curtain_max_fold_depth_m", curtain_max_fold_depth_m);
     v("join_curtain_panels", join_curtain_panels);
+    v("door_max_depth_m", door_max_depth_m);
   }
   void Validate() const;
 };
@@ -134,5 +143,13 @@ OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
 // height, on the same wall, when it is tall enough and folded; -1 for none, and when curtains are off.
 int CurtainWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
                   const WallOpeningOptions& options);
+
+// The smallest horizontal width of a point set: over directions in the floor plane (1° apart), the
+// least extent of the points along one (0 for no points).
+double MinHorizontalWidth(const std::vector<Eigen::Vector3f>& points_world);
+
+// Whether an object with these points is too deep to be a door (door_max_depth_m); false when the
+// check is off.
+bool TooDeepForADoor(const std::vector<Eigen::Vector3f>& points_world, const WallOpeningOptions& options);
 
 }  // namespace objscan::scanning

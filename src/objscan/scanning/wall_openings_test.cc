@@ -119,6 +119,11 @@ TEST(WallOpeningTest, OptionsAreChecked) {
   o = WallOpeningOptions();
   o.curtain_min_overlap_m = -0.1;
   EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.door_max_depth_m = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_ANY_THROW(o.Validate());
+  o.door_max_depth_m = std::numeric_limits<double>::infinity();
+  EXPECT_ANY_THROW(o.Validate());
   EXPECT_NO_THROW(WallOpeningOptions().Validate());
 }
 
@@ -314,6 +319,44 @@ TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
   on_second.wall = 1;
   EXPECT_EQ(CurtainWindow(on_second, windows, options), -1);
   EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options), {}, options), -1);
+}
+
+TEST(DoorTest, MinHorizontalWidthIsTheLeastExtentOverDirections) {
+  EXPECT_EQ(MinHorizontalWidth({}), 0.0);
+  // A 1 m x 0.3 m rectangle of points turned by 30°: 0.3 m, whatever the turn.
+  std::vector<Eigen::Vector3f> points;
+  const float c = std::cos(0.5236f), s = std::sin(0.5236f);
+  for (double u = 0.0; u <= 1.0 + 1e-9; u += 0.05) {
+    for (double v = 0.0; v <= 0.3 + 1e-9; v += 0.05) {
+      points.emplace_back(static_cast<float>(c * u - s * v), static_cast<float>(s * u + c * v), 0.5f);
+    }
+  }
+  EXPECT_NEAR(MinHorizontalWidth(points), 0.3, 0.005);
+  // Height does not count: a 2 m tall flat pane is as thin as its thickness.
+  EXPECT_NEAR(MinHorizontalWidth(Pane(0.2, 1.0, 1.8, 0.0, 2.0)), 0.0, 1e-6);
+}
+
+TEST(DoorTest, ADoorLabelNeedsSomethingAsThinAsADoorLeaf) {
+  const WallOpeningOptions options;  // 0.4 m
+  // An opened leaf 4 cm thick with a handle 6 cm proud, and a strip of the wall beside it.
+  std::vector<Eigen::Vector3f> leaf = Pane(0.01, 1.0, 1.8, 0.0, 2.0);
+  Append(Pane(0.05, 1.0, 1.8, 0.0, 2.0), &leaf);
+  Append(Pane(0.11, 1.1, 1.16, 0.95, 1.05), &leaf);
+  Append(Pane(-0.15, 1.8, 2.3, 0.0, 2.0), &leaf);
+  EXPECT_FALSE(TooDeepForADoor(leaf, options));
+  // A cabinet 60 cm deep whose front a door model fitted: with its top and side seen, too deep.
+  std::vector<Eigen::Vector3f> cabinet = Pane(0.6, 1.0, 2.0, 0.0, 0.9);
+  for (double x = 0.0; x <= 0.6 + 1e-9; x += 0.02) Append(Pane(x, 1.0, 2.0, 0.9, 0.9), &cabinet);
+  EXPECT_TRUE(TooDeepForADoor(cabinet, options));
+  // Its front alone is as thin as a door: the check cannot tell them apart.
+  EXPECT_FALSE(TooDeepForADoor(Pane(0.6, 1.0, 2.0, 0.0, 0.9), options));
+  // Off.
+  WallOpeningOptions off = options;
+  off.door_max_depth_m = -1.0;
+  EXPECT_FALSE(TooDeepForADoor(cabinet, off));
+  off = options;
+  off.enabled = false;
+  EXPECT_FALSE(TooDeepForADoor(cabinet, off));
 }
 
 }  // namespace
