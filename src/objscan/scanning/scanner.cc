@@ -959,6 +959,18 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   // Measured here, not at start-up: only the end of a run needs the models' sizes.
   const recognition::CategoryExtents category_extents =
       size_check.enabled ? recognition::CategoryExtents::FromDatabase(s.database) : recognition::CategoryExtents();
+  // The objects that host themselves as regrouping candidates, their points moved out of
+  // object_points (the regrouping hands them back); completed ones are fixed and unlabelled there.
+  const auto take_pieces = [&]() {
+    std::vector<RegroupCandidate> pieces(host.size());
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      if (host[i] != static_cast<int>(i)) continue;
+      pieces[i].points_world = std::move(object_points[i]);
+      pieces[i].category = rec.objects[i].complete ? std::nullopt : rec.objects[i].category;
+      pieces[i].fixed = rec.objects[i].complete;
+    }
+    return pieces;
+  };
   if (size_check.enabled && size_check.regroup) {
     // Absorbed objects hold no points in object_points (they host nothing), so they touch nothing.
     std::vector<std::pair<int, int>> adjacency = ObjectsWithinDistance(object_points, size_check.adjacency_m);
@@ -968,13 +980,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       std::sort(adjacency.begin(), adjacency.end());
       adjacency.erase(std::unique(adjacency.begin(), adjacency.end()), adjacency.end());
     }
-    std::vector<RegroupCandidate> pieces(host.size());
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      if (host[i] != static_cast<int>(i)) continue;
-      pieces[i].points_world = std::move(object_points[i]);
-      pieces[i].category = rec.objects[i].complete ? std::nullopt : rec.objects[i].category;
-      pieces[i].fixed = rec.objects[i].complete;
-    }
+    std::vector<RegroupCandidate> pieces = take_pieces();
     // The categories a union of objects is recognized as, best first.
     const auto recognize = [&](const std::vector<int>& members) {
       std::vector<std::int32_t> labels;
@@ -1004,15 +1010,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     }
   }
   if (size_check.enabled && size_check.join_stacked && size_check.support_gap_m >= 0.0) {
-    std::vector<RegroupCandidate> pieces(host.size());
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      if (host[i] != static_cast<int>(i)) continue;
-      pieces[i].points_world = std::move(object_points[i]);
-      pieces[i].category = rec.objects[i].complete ? std::nullopt : rec.objects[i].category;
-      pieces[i].fixed = rec.objects[i].complete;
-    }
-    RegroupResult stacked =
-        JoinStackedPieces(pieces, size_check.support_gap_m, size_check.adjacency_m, category_extents, size_check);
+    RegroupResult stacked = JoinStackedPieces(take_pieces(), size_check.support_gap_m, size_check.adjacency_m,
+                                              category_extents, size_check);
     object_points = std::move(stacked.points_world);
     for (std::size_t i = 0; i < host.size(); ++i) {
       const int into = stacked.host[i];
