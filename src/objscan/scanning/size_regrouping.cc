@@ -178,7 +178,10 @@ RegroupResult JoinStackedPieces(const std::vector<RegroupCandidate>& objects, do
     if (!recognition::IsPlausibleExtent(recognition::MeasureExtent(joined), extents.Find(label), options)) continue;
     out.points_world[static_cast<std::size_t>(into)] = std::move(joined);
     out.points_world[static_cast<std::size_t>(from)].clear();
-    out.host[static_cast<std::size_t>(from)] = into;
+    // What joined `from` before now belongs to `into`: hosts are always objects that host themselves.
+    for (int& h : out.host) {
+      if (h == from) h = into;
+    }
     ++out.merges;
   }
   return out;

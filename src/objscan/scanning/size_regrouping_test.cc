@@ -254,5 +254,32 @@ TEST(JoinStackedPiecesTest, AShadeTakenForARadioJoinsTheLampStandingUnderIt) {
   EXPECT_EQ(JoinStackedPieces(objects, 0.15, 0.05, extents, off).merges, 0);
 }
 
+TEST(JoinStackedPiecesTest, APieceThatTookAnotherHandsItOnWhenItJoins) {
+  // Three stacked pieces: a small base (1) under a stem (0) under a large shade (2). Joined in pair
+  // order, the base joins the stem, then the stem joins the shade: the base's host is the shade.
+  recognition::CategoryExtents extents;
+  extents.Add(Category::kLamp, {0.5, 0.3});
+  extents.Add(Category::kLamp, {2.0, 1.0});
+  std::vector<RegroupCandidate> objects(3);
+  objects[0].points_world = Box({0.1, 0.1, 0.2}, {0.3, 0.3, 1.0});  // stem, 0.8 m
+  objects[0].category = Category::kRadio;
+  objects[1].points_world = Box({0.15, 0.15, 0.0}, {0.25, 0.25, 0.15});  // base
+  objects[1].category = Category::kChair;
+  objects[2].points_world = Box({-0.1, -0.1, 1.05}, {0.5, 0.5, 1.6});  // shade, 0.6 m wide
+  objects[2].category = Category::kLamp;
+  ASSERT_GT(objects[0].points_world.size(), objects[1].points_world.size());
+  ASSERT_GT(objects[2].points_world.size(), objects[0].points_world.size());
+  ASSERT_EQ(ObjectsStandingUnder({objects[0].points_world, objects[1].points_world, objects[2].points_world}, 0.15, 0.05),
+            (std::vector<std::pair<int, int>>{{0, 1}, {0, 2}}));
+  recognition::CategoryExtents all = extents;
+  all.Add(Category::kRadio, {0.1, 0.1});
+  all.Add(Category::kRadio, {1.0, 0.5});
+  const RegroupResult r = JoinStackedPieces(objects, 0.15, 0.05, all, Options());
+  EXPECT_EQ(r.merges, 2);
+  EXPECT_EQ(r.host, (std::vector<int>{2, 2, 2}));
+  EXPECT_EQ(r.points_world[2].size(),
+            objects[0].points_world.size() + objects[1].points_world.size() + objects[2].points_world.size());
+}
+
 }  // namespace
 }  // namespace objscan::scanning
