@@ -9,7 +9,8 @@ const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const se
   if (!options.enabled || !options.relabel) return nullptr;
   const segmentation::ModelMatch* best = nullptr;
   for (const auto& m : matches.models) {
-    if (m.category == taken || m.objectness < options.relabel_min_objectness || m.category == world::Category::kCurtain) continue;
+    if (m.category == taken || m.objectness < options.relabel_min_objectness) continue;
+    if (m.category == world::Category::kCurtain) continue;  // the curtain check names those
     if (m.category == world::Category::kWindow && !in_wall_opening) continue;
     if (!recognition::IsPlausibleExtent(extent, extents.Find(m.category), options)) continue;
     if (best == nullptr || m.objectness > best->objectness) best = &m;

@@ -873,10 +873,9 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     FragmentCandidate f;
     const bool check_outgrown = completion_check.max_outside_share >= 0.0 && c.model.entry_id >= 0 &&
                                 c.model.entry_id < static_cast<int>(s.database.entries().size());
-    // A completed door too deep to be one (wall_openings.h, TooDeepForADoor) is reported unfinished;
-    // its door label is taken below.
-    const bool check_door = c.model.category == world::Category::kDoor && s.config.scanner.wall_openings.enabled &&
-                            s.config.scanner.wall_openings.door_max_depth_m >= 0.0;
+    // A completed door too deep to be one (wall_openings.h, TooDeepForADoor, false when off) is
+    // reported unfinished; its door label is taken below.
+    const bool check_door = c.model.category == world::Category::kDoor;
     if (check_outgrown || check_door) {
       std::vector<Eigen::Vector3f> seen = s.ComponentPoints(c.labels);
       bool reopen = check_door && TooDeepForADoor(seen, s.config.scanner.wall_openings);

@@ -165,11 +165,10 @@ RegroupResult JoinStackedPieces(const std::vector<RegroupCandidate>& objects, do
            *o.category != world::Category::kCurtain;
   };
   for (const auto& [a, b] : ObjectsStandingUnder(out.points_world, max_gap_m, margin_m)) {
-    if (!joinable(a) || !joinable(b) || objects[static_cast<std::size_t>(a)].category == objects[static_cast<std::size_t>(b)].category) {
-      continue;
-    }
+    const std::size_t ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+    if (!joinable(a) || !joinable(b) || objects[ua].category == objects[ub].category) continue;
     // Ties go to the lower index, so the outcome does not depend on anything but the input.
-    const bool a_larger = out.points_world[static_cast<std::size_t>(a)].size() >= out.points_world[static_cast<std::size_t>(b)].size();
+    const bool a_larger = out.points_world[ua].size() >= out.points_world[ub].size();
     const int into = a_larger ? a : b, from = a_larger ? b : a;
     std::vector<Eigen::Vector3f> joined = out.points_world[static_cast<std::size_t>(into)];
     const auto& from_points = out.points_world[static_cast<std::size_t>(from)];

@@ -269,8 +269,9 @@ TEST(JoinStackedPiecesTest, APieceThatTookAnotherHandsItOnWhenItJoins) {
   objects[2].category = Category::kLamp;
   ASSERT_GT(objects[0].points_world.size(), objects[1].points_world.size());
   ASSERT_GT(objects[2].points_world.size(), objects[0].points_world.size());
-  ASSERT_EQ(ObjectsStandingUnder({objects[0].points_world, objects[1].points_world, objects[2].points_world}, 0.15, 0.05),
-            (std::vector<std::pair<int, int>>{{0, 1}, {0, 2}}));
+  const std::vector<std::vector<Eigen::Vector3f>> points = {objects[0].points_world, objects[1].points_world,
+                                                            objects[2].points_world};
+  ASSERT_EQ(ObjectsStandingUnder(points, 0.15, 0.05), (std::vector<std::pair<int, int>>{{0, 1}, {0, 2}}));
   recognition::CategoryExtents all = extents;
   all.Add(Category::kRadio, {0.1, 0.1});
   all.Add(Category::kRadio, {1.0, 0.5});
