@@ -89,6 +89,37 @@ BENCHMARK(BM_NextBestView)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// A coverage view (scanning/coverage_views.h): the same table seen from -X, its one model, the
+// unseen model surface counted instead of the information gain; against BM_NextBestView/25/1/1.
+void BM_CoverageView(benchmark::State& state) {
+  const Points model = Table(0);
+  Points gamma;
+  for (const Eigen::Vector3f& p : model) {
+    if (p.x() < 0.0f) gamma.push_back(p);
+  }
+  Points floor;
+  for (double x = -0.8; x <= 0.8; x += 0.01) {
+    for (double y = -0.7; y <= 0.7; y += 0.01) floor.emplace_back(x, y, -0.005);
+  }
+  objscan::planning::NextBestViewInput input;
+  input.gamma_points_world = &gamma;
+  input.models = {{0, 1.0, &model}};
+  input.occluder_points_world = &floor;
+  input.gain_measure = objscan::planning::ViewGainMeasure::kUnobservedSurface;
+  objscan::planning::NextBestViewOptions options;
+  options.threads = 1;
+  options.candidates.ring_elevations_deg = {-20.0, 10.0, 40.0};
+  objscan::planning::NextBestView nbv(options);
+  double best_gain = 0.0;
+  for (auto _ : state) {
+    const objscan::planning::NextBestViewResult r = nbv.Plan(input, nullptr);
+    best_gain = r.candidates[static_cast<std::size_t>(r.best_index)].gain.gain;
+    benchmark::DoNotOptimize(r.best_index);
+  }
+  state.counters["unseen_voxels_in_best_view"] = best_gain;
+}
+BENCHMARK(BM_CoverageView)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_NextBestObject(benchmark::State& state) {
   objscan::Rng rng(3);
   std::vector<objscan::planning::NboObject> objects(static_cast<std::size_t>(state.range(0)));

@@ -90,4 +90,44 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
   fs::remove_all(dir);
 }
 
+// Coverage views (scanning/coverage_views.h) come only once the paper's loop has nothing left: with
+// them off the same room and seed end `done` at some step N; with them on, the first N steps are the
+// same views, the coverage views follow (action nbv, coverage_view true, an object of interest), and
+// what the camera saw only grows, so the visible share of V_S is at least as large. Here it must grow.
+TEST(RunE2eTest, CoverageViewsFollowThePapersLoopAndAddToWhatWasSeen) {
+  const fs::path dir = objscan::testing::ScratchPath("objscan_run_e2e_coverage");
+  fs::create_directories(dir);
+  const std::string db = (dir / "small.db").string();
+  const Result build = RunObjscan("db build --models procedural --variants 1 --out " + db);
+  ASSERT_EQ(build.exit_code, 0) << build.err;
+  const std::string common = "run --scene procedural:bathroom:1 --db " + db + " --seed 3 --out ";
+  const Result off = RunObjscan(common + (dir / "off").string() + " --set scanner.coverage_views.enabled=false");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  const Result on = RunObjscan(common + (dir / "on").string());
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  const nlohmann::json a = ReadJson(dir / "off" / "run.json");
+  const nlohmann::json b = ReadJson(dir / "on" / "run.json");
+  ASSERT_EQ(a["terminated"], "done");
+  EXPECT_EQ(a["metrics"]["coverage_views"], 0);
+  const std::size_t n = a["steps"].size();
+  ASSERT_GT(b["steps"].size(), n);
+  // The paper's loop: the same steps up to the one where the run without coverage views ended.
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    EXPECT_EQ(b["steps"][i]["pose"], a["steps"][i]["pose"]) << "step " << i;
+    EXPECT_FALSE(b["steps"][i]["coverage_view"].get<bool>()) << "step " << i;
+  }
+  int coverage_steps = 0;
+  for (const auto& step : b["steps"]) {
+    if (!step["coverage_view"].get<bool>()) continue;
+    ++coverage_steps;
+    EXPECT_EQ(step["action"], "nbv");
+    EXPECT_GE(step["ooi"].get<int>(), 0);
+    EXPECT_EQ(step["nbv_candidates"].size(), 16u);
+  }
+  EXPECT_GT(coverage_steps, 0);
+  EXPECT_EQ(b["metrics"]["coverage_views"].get<int>(), coverage_steps);
+  EXPECT_GT(b["metrics"]["views"].get<int>(), a["metrics"]["views"].get<int>());
+  EXPECT_GT(b["metrics"]["coverage_visible_rate"].get<double>(), a["metrics"]["coverage_visible_rate"].get<double>());
+}
+
 }  // namespace

@@ -315,6 +315,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   out.travel_m = record.travel_m;
   out.views = record.views;
   out.nbo_count = record.nbo_count;
+  out.coverage_views = record.coverage_views;
   out.nbv_per_object = record.NbvPerObject();
   return out;
 }

@@ -57,6 +57,7 @@ struct RunMetrics {
   std::vector<CoverageVoxelOutcome> coverage_voxels;  // every voxel of V_S
   double travel_m = 0.0;
   int views = 0, nbo_count = 0;
+  int coverage_views = 0;  // views completing reported objects' scans (scanning/coverage_views.h)
   double nbv_per_object = 0.0;
   // Per object category: ground truth count, outputs and true positives (Table 2).
   std::array<RecognitionCounts, world::kNumCategories> per_category{};

@@ -50,6 +50,7 @@ std::string RunJson(const RunOutputInputs& in) {
     Json step{{"index", s.index},
               {"action", s.action},
               {"look_around", s.look_around},
+              {"coverage_view", s.coverage_view},
               {"ooi", s.ooi},
               {"views", s.views},
               {"pose", PoseJson(s.T_world_camera)},
@@ -138,7 +139,8 @@ std::string RunJson(const RunOutputInputs& in) {
                  {"travel_m", m.travel_m},
                  {"views", m.views},
                  {"nbo_count", m.nbo_count},
-                 {"nbv_per_object", m.nbv_per_object}};
+                 {"nbv_per_object", m.nbv_per_object},
+                 {"coverage_views", m.coverage_views}};
     Json per_category = Json::object();
     for (int c = 0; c < world::kNumObjectCategories; ++c) {
       const auto& k = m.per_category[c];

@@ -78,6 +78,7 @@ void NextBestView::Prepare(const NextBestViewInput& input, const geometry::Aabb3
   probabilities_ = CandidateProbabilities(objectness);
   const double prior_entropy = Entropy(probabilities_.data(), n);
 
+  const bool count_surface = input.gain_measure == ViewGainMeasure::kUnobservedSurface;
   const double padding_m = BlurRadiusVoxels(options_.blur_sigma_voxels) * options_.voxel_size_m + options_.grid_padding_m;
   grid_ = LocalGrid::Covering(bounds, options_.voxel_size_m, padding_m,
                               static_cast<std::size_t>(options_.max_grid_voxels));
@@ -121,13 +122,13 @@ void NextBestView::Prepare(const NextBestViewInput& input, const geometry::Aabb3
           any = any || f[k] > eps;
         }
         if (!any) continue;
-        double h0, h1;
-        OutcomeEntropies(probabilities_.data(), f.data(), n, prior_entropy, &h0, &h1);
+        double h0 = 0.0, h1 = 0.0;
+        if (!count_surface) OutcomeEntropies(probabilities_.data(), f.data(), n, prior_entropy, &h0, &h1);
         std::uint16_t models = 0;
         for (int k = 0; k < n; ++k) {
           gains[k] = 0.0f;
           if (f[k] <= eps) continue;
-          const double gain = prior_entropy - ConditionalEntropy(f[k], h0, h1);
+          const double gain = count_surface ? 1.0 : prior_entropy - ConditionalEntropy(f[k], h0, h1);
           if (std::abs(gain) <= kNegligibleGainNats) continue;
           gains[k] = static_cast<float>(gain);
           models |= static_cast<std::uint16_t>(1u << (k + 1));

@@ -58,6 +58,16 @@ struct ModelHypothesis {
   const std::vector<Eigen::Vector3f>* points_world = nullptr;  // surface samples, spacing <= voxel size
 };
 
+// What a view is worth.
+enum class ViewGainMeasure {
+  // The paper's conditional information gain (eqs. (7)-(12)).
+  kInformation = 0,
+  // Beyond the paper, for views that complete the scan of a recognized object: the expected number of
+  // voxels of model surface not yet observed (f(x, m_i) above tdf_epsilon, f(x, gamma) not) that the
+  // view sees, sum_i p(m_i) |Delta_i visible|. With one model it counts that model's unseen surface.
+  kUnobservedSurface,
+};
+
 struct NextBestViewInput {
   const std::vector<Eigen::Vector3f>* gamma_points_world = nullptr;  // required, non-empty
   std::vector<ModelHypothesis> models;                               // M(gamma); at most 15
@@ -67,6 +77,7 @@ struct NextBestViewInput {
   // Ties in gain go to the candidate nearest this position (the current camera) when set.
   bool has_camera_position = false;
   Eigen::Vector3d camera_position_world = Eigen::Vector3d::Zero();
+  ViewGainMeasure gain_measure = ViewGainMeasure::kInformation;
 };
 
 // Gain of one view.

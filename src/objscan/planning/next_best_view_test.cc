@@ -168,6 +168,42 @@ TEST(NextBestViewTest, PrefersTheViewRevealingWhereModelsDisagree) {
   EXPECT_EQ(r4.candidates[2].gain.gain, 0.0);
 }
 
+TEST(NextBestViewTest, UnobservedSurfaceCountsTheUnseenVoxelsOfOneModel) {
+  // One model, the plain cube, seen only on its -X half: no uncertainty, so no information gain, but
+  // the unseen +X half is there to be scanned. Four candidates on one ring: +X, +Y, -X, -Y.
+  const DisagreeOnPlusX s;
+  NextBestViewOptions four;
+  four.candidates.num_candidates = 4;
+  four.candidates.ring_elevations_deg = {15.0};
+  NextBestView nbv(four);
+  NextBestViewInput in = s.Input();
+  in.models = {ModelHypothesis{2, 0.9, &s.model_b}};
+  NextBestViewResult r = nbv.Plan(in, nullptr);
+  ASSERT_EQ(r.status, NbvStatus::kOk);
+  for (const ViewCandidate& c : r.candidates) EXPECT_EQ(c.gain.gain, 0.0);
+
+  in.gain_measure = ViewGainMeasure::kUnobservedSurface;
+  r = nbv.Plan(in, nullptr);
+  ASSERT_EQ(r.status, NbvStatus::kOk);
+  EXPECT_EQ(r.best_index, 0);
+  // The gain is the number of unseen model voxels in view: an integer, the same as the count.
+  for (const ViewCandidate& c : r.candidates) {
+    EXPECT_EQ(c.gain.gain, static_cast<double>(c.gain.visible_voxels_per_model[0]));
+  }
+  // +X sees the unseen face (0.6 m x 0.6 m: 576 voxels of 2.5 cm, more with the blur) and the unseen
+  // half of the top; the sides see half of their face and that half top; -X only that half top.
+  EXPECT_GT(r.candidates[0].gain.gain, 576.0);
+  EXPECT_GT(r.candidates[0].gain.gain, r.candidates[1].gain.gain);
+  EXPECT_GT(r.candidates[1].gain.gain, r.candidates[2].gain.gain);
+  EXPECT_GT(r.candidates[3].gain.gain, r.candidates[2].gain.gain);
+  EXPECT_LT(r.candidates[2].gain.gain, 0.3 * r.candidates[0].gain.gain);
+
+  // Once everything is observed nothing is left to gain.
+  in.gamma_points_world = &s.cube;
+  r = nbv.Plan(in, nullptr);
+  for (const ViewCandidate& c : r.candidates) EXPECT_EQ(c.gain.gain, 0.0);
+}
+
 TEST(NextBestViewTest, OccludedVoxelsDoNotCount) {
   const DisagreeOnPlusX s;
   NextBestView nbv{NextBestViewOptions()};

@@ -25,6 +25,7 @@ struct StepRecord {
   int index = 0;
   std::string action;       // "nbo" (new object of interest), "nbv" (same one), "frontier" (exploration)
   bool look_around = false; // views taken turning in place (start and frontier arrivals)
+  bool coverage_view = false;  // an "nbv" view completing the scan of a reported object (coverage_views.h)
   int ooi = -1;             // object of interest id, -1 when exploring
   int views = 0;            // frames taken in this step
   geometry::Pose3 T_world_camera = geometry::Pose3::Identity();  // last camera pose of the step
@@ -120,6 +121,7 @@ struct RunRecord {
   int views = 0;
   int nbo_count = 0;
   int nbv_views = 0;
+  int coverage_views = 0;  // views completing reported objects' scans (not in nbv_views or nbo_count)
   double NbvPerObject() const { return nbo_count > 0 ? static_cast<double>(nbv_views) / nbo_count : 0.0; }
 };
 

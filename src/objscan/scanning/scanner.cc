@@ -20,6 +20,7 @@
 #include "objscan/recognition/component_matcher.h"
 #include "objscan/recognition/recognizer.h"
 #include "objscan/scanning/completion_check.h"
+#include "objscan/scanning/coverage_views.h"
 #include "objscan/scanning/label_replacement.h"
 #include "objscan/scanning/size_regrouping.h"
 #include "objscan/scanning/wall_openings.h"
@@ -204,6 +205,7 @@ struct Scanner::State {
         matcher(recognizer, c.scanner.threads),
         post_segmenter(c.postsegmentation, &matcher),
         nbv(c.nbv),
+        coverage_nbv(CoverageNbvOptions(c)),
         robot(c.robot, ChooseStart(s, c.robot, c.navigation)),
         visited(1, robot.base().xy_m),
         robot_occupancy(occupancy, visited, c.robot.base_radius_m + c.scanner.known_free_margin_m),
@@ -627,6 +629,103 @@ struct Scanner::State {
     }
   }
 
+  static planning::NextBestViewOptions CoverageNbvOptions(const SystemConfig& c) {
+    planning::NextBestViewOptions o = c.nbv;
+    o.candidates.ring_elevations_deg = c.scanner.coverage_views.ring_elevations_deg;
+    return o;
+  }
+
+  // One view completing the scan of a reported object (coverage_views.h); false when no object has
+  // a view showing enough of its unseen model surface.
+  bool CoverageStep(StepRecord* step) {
+    const CoverageViewOptions& options = config.scanner.coverage_views;
+    if (!options.enabled || options.max_views_per_object <= 0) return false;
+    struct Target {
+      int id = -1;
+      const segmentation::ModelMatch* model = nullptr;
+      Eigen::Vector3d center_world = Eigen::Vector3d::Zero();
+    };
+    std::vector<Target> targets;
+    const auto consider = [&](int id, const segmentation::ModelMatch* m, double objectness) {
+      if (m == nullptr || m->entry_id < 0 || m->entry_id >= static_cast<int>(database.entries().size())) return;
+      if (objectness < options.min_objectness || coverage_attempts[id] >= options.max_views_per_object) return;
+      targets.push_back({id, m, m->T_world_model.translation()});
+    };
+    for (const auto& c : completed) consider(c.id, &c.model, c.objectness);
+    for (int k : objects) {
+      const auto& r = post.objects[k];
+      const auto* best = r.best_model();
+      consider(r.component_ids.front(), best, best != nullptr ? best->objectness : 0.0);
+    }
+    // Nearest first (ties by id, so the order does not depend on container order).
+    const Eigen::Vector2d here = robot.base().xy_m;
+    std::sort(targets.begin(), targets.end(), [&](const Target& a, const Target& b) {
+      const double da = (a.center_world.head<2>() - here).norm(), db = (b.center_world.head<2>() - here).norm();
+      return da != db ? da < db : a.id < b.id;
+    });
+    if (occluders_stale) {
+      occluders = surface.AllPoints().points;
+      occluders_stale = false;
+    }
+    for (const Target& t : targets) {
+      ++coverage_attempts[t.id];
+      Stopwatch w;
+      std::vector<Eigen::Vector3f> model_points;
+      for (const auto& p : database.entries()[static_cast<std::size_t>(t.model->entry_id)].points) {
+        model_points.push_back((t.model->T_world_model * p.cast<double>()).cast<float>());
+      }
+      model_points = ModelSurfaceAboveFloor(model_points, structure.has_floor, structure.floor_height_m,
+                                            options.floor_clearance_m);
+      if (model_points.empty()) continue;
+      // Everything the robot saw around the model counts as seen, whichever object it went to.
+      geometry::Aabb3 box;
+      for (const auto& p : model_points) box.Extend(p.cast<double>());
+      const double margin_m = 2.0 * config.nbv.voxel_size_m;
+      std::vector<Eigen::Vector3f> seen;
+      for (const auto& p : occluders) {
+        const Eigen::Vector3d q = p.cast<double>();
+        if ((q.array() >= box.min_m.array() - margin_m).all() && (q.array() <= box.max_m.array() + margin_m).all()) {
+          seen.push_back(p);
+        }
+      }
+      if (seen.empty()) continue;
+      planning::NextBestViewInput input;
+      input.gamma_points_world = &seen;
+      input.models = {planning::ModelHypothesis{t.model->model_id, 1.0, &model_points}};
+      input.occluder_points_world = &occluders;
+      input.frustum = frustum;
+      input.has_camera_position = true;
+      input.camera_position_world = robot.CameraPose().translation();
+      input.gain_measure = planning::ViewGainMeasure::kUnobservedSurface;
+      std::vector<geometry::Pose3> earlier = views_of[t.id];
+      earlier.push_back(robot.CameraPose());
+      MapViewValidator validator(occupancy, robot, navigator,
+                                 std::max(config.scanner.line_of_sight_skip_m, 0.5 * box.Diagonal()), earlier,
+                                 config.scanner.min_view_separation_m, config.scanner.min_view_separation_deg);
+      const planning::NextBestViewResult result = coverage_nbv.Plan(input, &validator);
+      Charge(step, "nbv", w.ElapsedMs());
+      if (result.status != planning::NbvStatus::kOk ||
+          result.candidates[result.best_index].gain.gain < options.min_unseen_voxels) {
+        continue;
+      }
+      if (!MoveCamera(result.candidates[result.best_index].T_world_camera, step)) {
+        step->notes.push_back("object " + std::to_string(t.id) + ": coverage view not reachable");
+        continue;
+      }
+      step->action = "nbv";
+      step->coverage_view = true;
+      step->ooi = t.id;
+      step->nbv_candidates.clear();
+      for (const auto& c : result.candidates) {
+        step->nbv_candidates.push_back({c.T_world_camera, planning::ToString(c.validity), c.gain.gain});
+      }
+      views_of[t.id].push_back(robot.CameraPose());
+      ++record.coverage_views;
+      return true;
+    }
+    return false;
+  }
+
   // Exploration: returns the termination when there is nothing left to do.
   Termination ExploreStep(StepRecord* step) {
     step->action = "frontier";
@@ -703,6 +802,7 @@ struct Scanner::State {
   std::unique_ptr<MapSpaceEvidence> space_evidence;  // rebuilt at every analysis
   segmentation::PostSegmenter post_segmenter;
   planning::NextBestView nbv;
+  planning::NextBestView coverage_nbv;  // the NBV planner with the coverage views' candidate rings
   planning::CameraFrustum frustum;
   sim::Robot robot;
   std::vector<Eigen::Vector2d> visited;
@@ -728,6 +828,7 @@ struct Scanner::State {
   std::map<std::int32_t, int> label_views;  // NBV views spent on objects holding this component
   std::map<int, std::vector<double>> objectness_history;  // O(r) of an OOI before each of its views
   std::map<int, std::vector<geometry::Pose3>> views_of;  // NBV camera poses per object of interest
+  std::map<int, int> coverage_attempts;  // coverage views planned per object (coverage_views.h)
   std::vector<Eigen::Vector3d> visited_goals;
   std::vector<Eigen::Vector3f> occluders;
   bool occluders_stale = true;
@@ -811,6 +912,8 @@ bool Scanner::Step() {
         s.given_up_no_view.clear();
         t = Termination::kRunning;
       }
+      // Nothing else left: complete the scans of the reported objects.
+      if (t != Termination::kRunning && object_guidance && s.CoverageStep(&step)) t = Termination::kRunning;
       if (t != Termination::kRunning) {
         rec.terminated = t;
         step.notes.push_back(std::string("terminated: ") + TerminationName(t));

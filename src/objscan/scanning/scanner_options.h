@@ -5,6 +5,7 @@
 #include "objscan/common/config.h"
 #include "objscan/recognition/category_extent.h"
 #include "objscan/scanning/completion_check.h"
+#include "objscan/scanning/coverage_views.h"
 #include "objscan/scanning/fragment_absorption.h"
 #include "objscan/scanning/map_space_evidence.h"
 #include "objscan/scanning/wall_openings.h"
@@ -70,6 +71,8 @@ struct ScannerOptions {
   // What counts as impossible space for a recognition hypothesis (used when
   // recognition.space_weight > 0).
   MapSpaceEvidenceOptions space;
+  // Views completing the scan of reported objects when nothing else is left (coverage_views.h).
+  CoverageViewOptions coverage_views;
   int threads = 0;                     // 0 = hardware concurrency; results do not depend on it
 
   template <class V>
@@ -99,6 +102,7 @@ struct ScannerOptions {
     v("size_check", size_check);
     v("wall_openings", wall_openings);
     v("space", space);
+    v("coverage_views", coverage_views);
     v("threads", threads);
   }
   void Validate() const {
@@ -126,6 +130,7 @@ struct ScannerOptions {
     size_check.Validate();
     wall_openings.Validate();
     space.Validate();
+    coverage_views.Validate();
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");
   }
 };

@@ -1,0 +1,29 @@
+#include "objscan/scanning/coverage_views.h"
+
+#include <cmath>
+
+namespace objscan::scanning {
+
+void CoverageViewOptions::Validate() const {
+  config::Require(max_views_per_object >= 0, "scanner.coverage_views.max_views_per_object", "must be >= 0");
+  config::Require(min_unseen_voxels >= 1, "scanner.coverage_views.min_unseen_voxels", "must be >= 1");
+  config::RequireInRange("scanner.coverage_views.min_objectness", min_objectness, 0.0, 1.0);
+  config::RequireNonNegative("scanner.coverage_views.floor_clearance_m", floor_clearance_m);
+  config::Require(!ring_elevations_deg.empty(), "scanner.coverage_views.ring_elevations_deg", "must not be empty");
+  for (double e : ring_elevations_deg) {
+    config::RequireInRange("scanner.coverage_views.ring_elevations_deg", e, -89.0, 89.0);
+  }
+}
+
+std::vector<Eigen::Vector3f> ModelSurfaceAboveFloor(const std::vector<Eigen::Vector3f>& model_points_world,
+                                                    bool has_floor, double floor_height_m, double clearance_m) {
+  const double min_z = (has_floor ? floor_height_m : 0.0) + clearance_m;
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(model_points_world.size());
+  for (const Eigen::Vector3f& p : model_points_world) {
+    if (p.z() >= min_z) out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace objscan::scanning
