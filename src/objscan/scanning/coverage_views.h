@@ -16,7 +16,8 @@ namespace objscan::scanning {
 
 struct CoverageViewOptions {
   bool enabled = true;            // false: the paper's loop (done when no object and no frontier is left)
-  int max_views_per_object = 2;   // coverage views planned per object
+  // Coverage views planned per object, at most (a plan whose best view shows too little counts).
+  int max_views_per_object = 2;
   // A view must show at least this many unseen voxels of the model's blurred surface (NBV grid voxels,
   // 2.5 cm by default; the blurred shell is 3-4 voxels thick, so 400 is roughly 0.06 m2 of surface).
   int min_unseen_voxels = 400;
