@@ -28,13 +28,21 @@ nlohmann::json WithoutTimings(nlohmann::json j) {
   return j;
 }
 
-TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
-  const fs::path dir = objscan::testing::ScratchPath("objscan_run_e2e");
-  fs::create_directories(dir);
-  // One procedural model per category keeps the database build short.
-  const std::string db = (dir / "small.db").string();
+// A fresh scratch folder `name` with small.db in it: one procedural model per category keeps the
+// database build short. Empty on failure (the test then fails with the build's stderr).
+std::string ScratchWithSmallDatabase(const std::string& name, fs::path* dir) {
+  *dir = objscan::testing::ScratchPath(name);
+  fs::create_directories(*dir);
+  const std::string db = (*dir / "small.db").string();
   const Result build = RunObjscan("db build --models procedural --variants 1 --out " + db);
-  ASSERT_EQ(build.exit_code, 0) << build.err;
+  EXPECT_EQ(build.exit_code, 0) << build.err;
+  return build.exit_code == 0 ? db : std::string();
+}
+
+TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
+  fs::path dir;
+  const std::string db = ScratchWithSmallDatabase("objscan_run_e2e", &dir);
+  ASSERT_FALSE(db.empty());
 
   const std::string common = "run --scene procedural:bathroom:1 --db " + db + " --seed 3 --set scanner.max_steps=8 --out ";
   const Result a = RunObjscan(common + (dir / "a").string());
@@ -95,11 +103,9 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
 // same views, the coverage views follow (action nbv, coverage_view true, an object of interest), and
 // what the camera saw only grows, so the visible share of V_S is at least as large. Here it must grow.
 TEST(RunE2eTest, CoverageViewsFollowThePapersLoopAndAddToWhatWasSeen) {
-  const fs::path dir = objscan::testing::ScratchPath("objscan_run_e2e_coverage");
-  fs::create_directories(dir);
-  const std::string db = (dir / "small.db").string();
-  const Result build = RunObjscan("db build --models procedural --variants 1 --out " + db);
-  ASSERT_EQ(build.exit_code, 0) << build.err;
+  fs::path dir;
+  const std::string db = ScratchWithSmallDatabase("objscan_run_e2e_coverage", &dir);
+  ASSERT_FALSE(db.empty());
   const std::string common = "run --scene procedural:bathroom:1 --db " + db + " --seed 3 --out ";
   const Result off = RunObjscan(common + (dir / "off").string() + " --set scanner.coverage_views.enabled=false");
   ASSERT_EQ(off.exit_code, 0) << off.err;
