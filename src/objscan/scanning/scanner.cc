@@ -409,6 +409,26 @@ struct Scanner::State {
     o->objectness = m.objectness;
   }
 
+  // The points of m's database entry placed by m.T_world_model (none for a match without an entry).
+  std::vector<Eigen::Vector3f> PlacedModelPoints(const segmentation::ModelMatch& m) const {
+    std::vector<Eigen::Vector3f> points;
+    if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return points;
+    const auto& entry = database.entries()[static_cast<std::size_t>(m.entry_id)];
+    points.reserve(entry.points.size());
+    for (const auto& p : entry.points) points.push_back((m.T_world_model * p.cast<double>()).cast<float>());
+    return points;
+  }
+
+  // The map surface, which hides what lies behind it from an NBV candidate (gathered again only
+  // after the map changed).
+  const std::vector<Eigen::Vector3f>& Occluders() {
+    if (occluders_stale) {
+      occluders = surface.AllPoints().points;
+      occluders_stale = false;
+    }
+    return occluders;
+  }
+
   // Fragment absorption's view of an object with a best model: the model's points and pose.
   void SetModel(const segmentation::ModelMatch& m, FragmentCandidate* f) const {
     if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return;
@@ -559,11 +579,7 @@ struct Scanner::State {
       model_points.reserve(models.size());
       for (const auto& m : models) {
         if (m.entry_id < 0) continue;
-        const auto& entry = database.entries()[m.entry_id];
-        std::vector<Eigen::Vector3f> pts;
-        pts.reserve(entry.points.size());
-        for (const auto& p : entry.points) pts.push_back((m.T_world_model * p.cast<double>()).cast<float>());
-        model_points.push_back(std::move(pts));
+        model_points.push_back(PlacedModelPoints(m));
         if (model_points.size() >= 15) break;
       }
       for (std::size_t i = 0; i < model_points.size(); ++i) {
@@ -573,14 +589,10 @@ struct Scanner::State {
         h.points_world = &model_points[i];
         hypotheses.push_back(h);
       }
-      if (occluders_stale) {
-        occluders = surface.AllPoints().points;
-        occluders_stale = false;
-      }
       planning::NextBestViewInput input;
       input.gamma_points_world = &gamma_points;
       input.models = hypotheses;
-      input.occluder_points_world = &occluders;
+      input.occluder_points_world = &Occluders();
       input.frustum = frustum;
       input.has_camera_position = true;
       input.camera_position_world = robot.CameraPose().translation();
@@ -663,36 +675,26 @@ struct Scanner::State {
       const double da = (a.center_world.head<2>() - here).norm(), db = (b.center_world.head<2>() - here).norm();
       return da != db ? da < db : a.id < b.id;
     });
-    if (occluders_stale) {
-      occluders = surface.AllPoints().points;
-      occluders_stale = false;
-    }
+    const std::vector<Eigen::Vector3f>& map_points = Occluders();
     for (const Target& t : targets) {
       ++coverage_attempts[t.id];
       Stopwatch w;
-      std::vector<Eigen::Vector3f> model_points;
-      for (const auto& p : database.entries()[static_cast<std::size_t>(t.model->entry_id)].points) {
-        model_points.push_back((t.model->T_world_model * p.cast<double>()).cast<float>());
-      }
-      model_points = ModelSurfaceAboveFloor(model_points, structure.has_floor, structure.floor_height_m,
-                                            options.floor_clearance_m);
+      const std::vector<Eigen::Vector3f> model_points = ModelSurfaceAboveFloor(
+          PlacedModelPoints(*t.model), structure.has_floor, structure.floor_height_m, options.floor_clearance_m);
       if (model_points.empty()) continue;
       // Everything the robot saw around the model counts as seen, whichever object it went to.
       geometry::Aabb3 box;
       for (const auto& p : model_points) box.Extend(p.cast<double>());
       const double margin_m = 2.0 * config.nbv.voxel_size_m;
       std::vector<Eigen::Vector3f> seen;
-      for (const auto& p : occluders) {
-        const Eigen::Vector3d q = p.cast<double>();
-        if ((q.array() >= box.min_m.array() - margin_m).all() && (q.array() <= box.max_m.array() + margin_m).all()) {
-          seen.push_back(p);
-        }
+      for (const auto& p : map_points) {
+        if (box.Contains(p.cast<double>(), margin_m)) seen.push_back(p);
       }
       if (seen.empty()) continue;
       planning::NextBestViewInput input;
       input.gamma_points_world = &seen;
       input.models = {planning::ModelHypothesis{t.model->model_id, 1.0, &model_points}};
-      input.occluder_points_world = &occluders;
+      input.occluder_points_world = &map_points;
       input.frustum = frustum;
       input.has_camera_position = true;
       input.camera_position_world = robot.CameraPose().translation();
