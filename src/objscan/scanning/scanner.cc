@@ -573,19 +573,20 @@ struct Scanner::State {
       std::size_t n = 0;
       ObjectGeometry(gamma, &gamma_points, &bounds, &area, &n);
       // Shape priors: the aligned full models of M(gamma).
-      std::vector<std::vector<Eigen::Vector3f>> model_points;
-      std::vector<planning::ModelHypothesis> hypotheses;
-      const auto& models = gamma.full_model_matches.models;
-      model_points.reserve(models.size());
-      for (const auto& m : models) {
+      // Matches without a database entry have no points to place; each placed set keeps its match.
+      std::vector<const segmentation::ModelMatch*> placed;
+      for (const auto& m : gamma.full_model_matches.models) {
         if (m.entry_id < 0) continue;
-        model_points.push_back(PlacedModelPoints(m));
-        if (model_points.size() >= 15) break;
+        placed.push_back(&m);
+        if (placed.size() >= 15) break;
       }
-      for (std::size_t i = 0; i < model_points.size(); ++i) {
+      std::vector<std::vector<Eigen::Vector3f>> model_points(placed.size());
+      std::vector<planning::ModelHypothesis> hypotheses;
+      for (std::size_t i = 0; i < placed.size(); ++i) {
+        model_points[i] = PlacedModelPoints(*placed[i]);
         planning::ModelHypothesis h;
-        h.model_id = models[i].model_id;
-        h.objectness = std::max(0.0, models[i].objectness);
+        h.model_id = placed[i]->model_id;
+        h.objectness = std::max(0.0, placed[i]->objectness);
         h.points_world = &model_points[i];
         hypotheses.push_back(h);
       }
