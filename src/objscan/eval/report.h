@@ -27,6 +27,17 @@ struct CategoryCounts {
   int ground_truth = 0, outputs = 0, true_positives = 0;
 };
 
+// What became of one ground-truth instance of a run (metrics.instances): the coverage breakdown.
+struct InstanceOutcome {
+  std::string category;
+  int surface_voxels = 0;  // its voxels in V_S
+  int visible_voxels = 0;  // of those, seen within range
+  bool matched = false;    // a true positive: its surface counts towards coverage_rate
+  // The label of the output object holding most of its points ("unlabelled" for an object without
+  // one, "not reported" when no object holds its points).
+  std::string reported_as;
+};
+
 // One run (a run.json, or a failed.json without a run.json).
 struct RunSummary {
   std::string scene_id, method, scene_spec, scene_category;
@@ -41,6 +52,7 @@ struct RunSummary {
   int views = 0, nbo_count = 0, steps = 0;
   double nbv_per_object = 0;
   std::map<std::string, CategoryCounts> per_category;
+  std::vector<InstanceOutcome> instances;
   std::vector<CoveragePoint> coverage;
   std::vector<std::pair<int, double>> rand_index_per_view;  // (views seen, Rand Index) per analysis
   RunTiming timing_s;
@@ -95,6 +107,18 @@ struct ObjectCategoryStats {
   double recall = 0, precision = 0;  // tp / ground truth, tp / outputs (0 when the divisor is 0)
 };
 
+// Where the coverage rate goes, per ground-truth object category (method "ours"), as shares of V_S
+// averaged over runs like coverage_rate: summed over the categories, `covered` gives the mean
+// coverage_rate and `seen` the mean share of V_S seen within range.
+struct CoverageBreakdownRow {
+  std::string category;
+  double surface = 0;  // share of V_S
+  double seen = 0;     // seen within range
+  double covered = 0;  // seen, on a matched instance
+  // The seen surface of unmatched instances by what they were reported as, largest first.
+  std::vector<std::pair<std::string, double>> missed_as;
+};
+
 // A mean curve over the runs of a group: y at each x (runs that ended earlier hold their last value).
 struct Curve {
   std::string label;
@@ -106,6 +130,7 @@ struct Report {
   std::vector<std::string> scene_categories;  // present, in the paper's order
   std::map<std::string, std::vector<SceneCategoryStats>> by_method;  // per scene category, then "all"
   std::vector<ObjectCategoryStats> object_categories;  // method "ours"
+  std::vector<CoverageBreakdownRow> coverage_breakdown;  // method "ours", largest surface first
   std::vector<RunSummary> runs;
   int complete_runs = 0, failed_runs = 0;
 };

@@ -197,6 +197,61 @@ TEST(ReportTest, MeansPerSceneCategoryAndSumsPerObjectCategory) {
   EXPECT_NE(md.find("75.00%"), std::string::npos);
 }
 
+// Run A: V_S of 100 voxels, a chair (40, all seen, matched), a cabinet (60, 50 seen, taken for a
+// dresser by the larger of two objects on it). Run B: a cabinet (10, all seen, matched) and a
+// chair (30, 20 seen, on no object). Means over the two runs of the per-run shares.
+TEST(ReportTest, CoverageBreakdownSharesVsByCategoryLikeTheCoverageRate) {
+  Fixture a, b;
+  b.spec = "procedural:bedroom:2";
+  nlohmann::json ja = nlohmann::json::parse(a.Json()), jb = nlohmann::json::parse(b.Json());
+  ja["metrics"]["instances"] = {
+      {{"instance", 3}, {"category", "chair"}, {"surface_voxels", 40}, {"visible_voxels", 40}, {"matched", true}},
+      {{"instance", 4}, {"category", "cabinet"}, {"surface_voxels", 60}, {"visible_voxels", 50}, {"matched", false}}};
+  ja["objects"] = {{{"id", 1}, {"category", "chair"}, {"points", 900}, {"gt_instance", 3}},
+                   {{"id", 2}, {"category", "dresser"}, {"points", 700}, {"gt_instance", 4}},
+                   {{"id", 5}, {"category", nullptr}, {"points", 200}, {"gt_instance", 4}}};
+  jb["metrics"]["instances"] = {
+      {{"instance", 7}, {"category", "cabinet"}, {"surface_voxels", 10}, {"visible_voxels", 10}, {"matched", true}},
+      {{"instance", 8}, {"category", "chair"}, {"surface_voxels", 30}, {"visible_voxels", 20}, {"matched", false}}};
+  jb["objects"] = {{{"id", 1}, {"category", "cabinet"}, {"points", 300}, {"gt_instance", 7}}};
+  const RunSummary ra = ParseRunJson(ja.dump(), "bed-1", "ours", "a");
+  ASSERT_EQ(ra.instances.size(), 2u);
+  EXPECT_EQ(ra.instances[1].reported_as, "dresser");
+  const Report report = BuildReport({ra, ParseRunJson(jb.dump(), "bed-2", "ours", "b")});
+  ASSERT_EQ(report.coverage_breakdown.size(), 2u);  // largest share of V_S first
+  const CoverageBreakdownRow& chair = report.coverage_breakdown[0];
+  const CoverageBreakdownRow& cabinet = report.coverage_breakdown[1];
+  EXPECT_EQ(chair.category, "chair");
+  // Cabinet: surface (0.60 + 0.25) / 2, seen (0.50 + 0.25) / 2, covered (0 + 0.25) / 2.
+  EXPECT_EQ(cabinet.category, "cabinet");
+  EXPECT_DOUBLE_EQ(cabinet.surface, 0.425);
+  EXPECT_DOUBLE_EQ(cabinet.seen, 0.375);
+  EXPECT_DOUBLE_EQ(cabinet.covered, 0.125);
+  ASSERT_EQ(cabinet.missed_as.size(), 1u);
+  EXPECT_EQ(cabinet.missed_as[0].first, "dresser");
+  EXPECT_DOUBLE_EQ(cabinet.missed_as[0].second, 0.25);
+  // Chair: surface (0.40 + 0.75) / 2, seen (0.40 + 0.50) / 2, covered 0.40 / 2; its unmatched
+  // instance of run B lies on no object.
+  EXPECT_DOUBLE_EQ(chair.surface, 0.575);
+  EXPECT_DOUBLE_EQ(chair.seen, 0.45);
+  EXPECT_DOUBLE_EQ(chair.covered, 0.2);
+  ASSERT_EQ(chair.missed_as.size(), 1u);
+  EXPECT_EQ(chair.missed_as[0].first, "not reported");
+  EXPECT_DOUBLE_EQ(chair.missed_as[0].second, 0.25);
+  // Summed, covered is the mean of the runs' covered shares (here (0.4 + 0.25) / 2).
+  EXPECT_DOUBLE_EQ(cabinet.covered + chair.covered, 0.325);
+  const std::string md = ReportMarkdown(report);
+  EXPECT_NE(md.find("| Cabinet | 42.50 | 37.50 | 12.50 | 25.00 | Dresser 25.00 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| **All** | 100.00 | 82.50 | 32.50 | 50.00 | |"), std::string::npos) << md;
+  const nlohmann::json j = nlohmann::json::parse(ReportJson(report));
+  EXPECT_EQ(j["coverage_breakdown"][0]["category"], "chair");
+  EXPECT_DOUBLE_EQ(j["coverage_breakdown"][0]["covered"].get<double>(), 0.2);
+  // Runs without instances (older run.json files) leave the breakdown out.
+  EXPECT_TRUE(BuildReport({ParseRunJson(a.Json(), "bed-1", "ours", "a")}).coverage_breakdown.empty());
+  EXPECT_EQ(ReportMarkdown(BuildReport({ParseRunJson(a.Json(), "bed-1", "ours", "a")})).find("Where the coverage"),
+            std::string::npos);
+}
+
 TEST(ReportTest, CurvesHoldTheLastValueOfShorterRuns) {
   Fixture a, b;
   b.steps = {{"frontier", 1, 0.0}, {"nbo", 1, 2.0}};
