@@ -133,7 +133,7 @@ RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, co
       }
       for (const Json& i : m["instances"]) {
         if (!i.is_object()) continue;
-        InstanceOutcome c;
+        ReportedInstance c;
         c.category = i.value("category", std::string());
         c.surface_voxels = Int(i, "surface_voxels");
         c.visible_voxels = Int(i, "visible_voxels");

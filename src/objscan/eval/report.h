@@ -28,7 +28,7 @@ struct CategoryCounts {
 };
 
 // What became of one ground-truth instance of a run (metrics.instances): the coverage breakdown.
-struct InstanceOutcome {
+struct ReportedInstance {
   std::string category;
   int surface_voxels = 0;  // its voxels in V_S
   int visible_voxels = 0;  // of those, seen within range
@@ -52,7 +52,7 @@ struct RunSummary {
   int views = 0, nbo_count = 0, steps = 0;
   double nbv_per_object = 0;
   std::map<std::string, CategoryCounts> per_category;
-  std::vector<InstanceOutcome> instances;
+  std::vector<ReportedInstance> instances;
   std::vector<CoveragePoint> coverage;
   std::vector<std::pair<int, double>> rand_index_per_view;  // (views seen, Rand Index) per analysis
   RunTiming timing_s;
