@@ -219,25 +219,25 @@ TEST(ReportTest, CoverageBreakdownSharesVsByCategoryLikeTheCoverageRate) {
   EXPECT_EQ(ra.instances[1].reported_as, "dresser");
   const Report report = BuildReport({ra, ParseRunJson(jb.dump(), "bed-2", "ours", "b")});
   ASSERT_EQ(report.coverage_breakdown.size(), 2u);  // largest share of V_S first
+  // The shares of a row, and the one label its missed surface went to.
+  const auto expect_row = [](const CoverageBreakdownRow& row, const std::string& category, double surface,
+                             double seen, double covered, const std::string& missed_as, double missed) {
+    SCOPED_TRACE(category);
+    EXPECT_EQ(row.category, category);
+    EXPECT_DOUBLE_EQ(row.surface, surface);
+    EXPECT_DOUBLE_EQ(row.seen, seen);
+    EXPECT_DOUBLE_EQ(row.covered, covered);
+    ASSERT_EQ(row.missed_as.size(), 1u);
+    EXPECT_EQ(row.missed_as[0].first, missed_as);
+    EXPECT_DOUBLE_EQ(row.missed_as[0].second, missed);
+  };
   const CoverageBreakdownRow& chair = report.coverage_breakdown[0];
   const CoverageBreakdownRow& cabinet = report.coverage_breakdown[1];
-  EXPECT_EQ(chair.category, "chair");
-  // Cabinet: surface (0.60 + 0.25) / 2, seen (0.50 + 0.25) / 2, covered (0 + 0.25) / 2.
-  EXPECT_EQ(cabinet.category, "cabinet");
-  EXPECT_DOUBLE_EQ(cabinet.surface, 0.425);
-  EXPECT_DOUBLE_EQ(cabinet.seen, 0.375);
-  EXPECT_DOUBLE_EQ(cabinet.covered, 0.125);
-  ASSERT_EQ(cabinet.missed_as.size(), 1u);
-  EXPECT_EQ(cabinet.missed_as[0].first, "dresser");
-  EXPECT_DOUBLE_EQ(cabinet.missed_as[0].second, 0.25);
   // Chair: surface (0.40 + 0.75) / 2, seen (0.40 + 0.50) / 2, covered 0.40 / 2; its unmatched
   // instance of run B lies on no object.
-  EXPECT_DOUBLE_EQ(chair.surface, 0.575);
-  EXPECT_DOUBLE_EQ(chair.seen, 0.45);
-  EXPECT_DOUBLE_EQ(chair.covered, 0.2);
-  ASSERT_EQ(chair.missed_as.size(), 1u);
-  EXPECT_EQ(chair.missed_as[0].first, "not reported");
-  EXPECT_DOUBLE_EQ(chair.missed_as[0].second, 0.25);
+  expect_row(chair, "chair", 0.575, 0.45, 0.2, "not reported", 0.25);
+  // Cabinet: surface (0.60 + 0.25) / 2, seen (0.50 + 0.25) / 2, covered (0 + 0.25) / 2.
+  expect_row(cabinet, "cabinet", 0.425, 0.375, 0.125, "dresser", 0.25);
   // Summed, covered is the mean of the runs' covered shares (here (0.4 + 0.25) / 2).
   EXPECT_DOUBLE_EQ(cabinet.covered + chair.covered, 0.325);
   const std::string md = ReportMarkdown(report);
