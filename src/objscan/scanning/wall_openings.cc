@@ -39,6 +39,9 @@ void WallOpeningOptions::Validate() const {
   config::Require(window_keep_share <= window_min_share, "scanner.wall_openings.window_keep_share",
                   "must be <= window_min_share");
   config::RequireNonNegative("scanner.wall_openings.min_sill_height_m", min_sill_height_m);
+  config::Require(std::isfinite(hanging_window_max_distance_m), "scanner.wall_openings.hanging_window_max_distance_m",
+                  "must be a number (negative = off)");
+  config::RequireInRange("scanner.wall_openings.hanging_window_min_share", hanging_window_min_share, 0.0, 1.0);
   config::Require(std::isfinite(join_gap_m), "scanner.wall_openings.join_gap_m", "must be finite");
   config::Require(std::isfinite(curtain_max_distance_m), "scanner.wall_openings.curtain_max_distance_m",
                   "must be finite");
@@ -97,7 +100,10 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
   if (off_floor && result.share >= options.window_min_share) {
     result.verdict = WallOpeningVerdict::kWindow;
   } else if (labelled_window && result.share < options.window_keep_share) {
-    result.verdict = WallOpeningVerdict::kNotWindow;
+    const bool hangs_on_wall = off_floor && options.hanging_window_max_distance_m >= 0.0 &&
+                               HangingWall(points_world, structure, options.min_depth_m,
+                                           options.hanging_window_max_distance_m, options.hanging_window_min_share) >= 0;
+    if (!hangs_on_wall) result.verdict = WallOpeningVerdict::kNotWindow;
   }
   return result;
 }
@@ -125,26 +131,47 @@ OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, co
   return extent;
 }
 
+namespace {
+
+// Whether p lies in front of `wall` by at most max_distance_m (behind it by at most min_depth_m),
+// within its span.
+bool HangsInFront(const mapping::WallPlane& wall, const Eigen::Vector3d& p, double min_depth_m, double max_distance_m) {
+  const double d = wall.SignedDistance(p), s = wall.Along(p);
+  return d >= -min_depth_m && d <= max_distance_m && s >= wall.span_min_m && s <= wall.span_max_m;
+}
+
+}  // namespace
+
+int HangingWall(const std::vector<Eigen::Vector3f>& points_world, const mapping::StructureResult& structure,
+                double min_depth_m, double max_distance_m, double min_share) {
+  if (points_world.empty()) return -1;
+  for (std::size_t w = 0; w < structure.walls.size(); ++w) {
+    std::size_t near = 0;
+    for (const Eigen::Vector3f& p : points_world) {
+      near += HangsInFront(structure.walls[w], p.cast<double>(), min_depth_m, max_distance_m) ? 1 : 0;
+    }
+    // Walls meet at corners, where an object may hang in front of two; the first that holds it wins.
+    if (near > 0 && static_cast<double>(near) >= min_share * static_cast<double>(points_world.size())) {
+      return static_cast<int>(w);
+    }
+  }
+  return -1;
+}
+
 OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
                             const mapping::StructureResult& structure, const WallOpeningOptions& options) {
   OpeningExtent extent;
   if (!options.enabled || options.curtain_max_distance_m < 0.0 || points_world.empty()) return extent;
-  for (std::size_t w = 0; w < structure.walls.size(); ++w) {
-    const mapping::WallPlane& wall = structure.walls[w];
+  const int w = HangingWall(points_world, structure, options.min_depth_m, options.curtain_max_distance_m,
+                            options.curtain_min_share);
+  if (w >= 0) {
+    const mapping::WallPlane& wall = structure.walls[static_cast<std::size_t>(w)];
     const auto hangs = [&](const Eigen::Vector3d& p) {
-      const double d = wall.SignedDistance(p), s = wall.Along(p);
-      return d >= -options.min_depth_m && d <= options.curtain_max_distance_m && s >= wall.span_min_m &&
-             s <= wall.span_max_m;
+      return HangsInFront(wall, p, options.min_depth_m, options.curtain_max_distance_m);
     };
-    std::size_t near = 0;
-    for (const Eigen::Vector3f& p : points_world) near += hangs(p.cast<double>()) ? 1 : 0;
-    if (near == 0 || static_cast<double>(near) < options.curtain_min_share * static_cast<double>(points_world.size())) {
-      continue;
-    }
-    // Walls meet at corners, where an object may hang in front of two; the first that holds it wins.
-    extent.wall = static_cast<int>(w);
+    extent.wall = w;
     std::vector<double> distances;
-    distances.reserve(near);
+    distances.reserve(points_world.size());
     for (const Eigen::Vector3f& pf : points_world) {
       const Eigen::Vector3d p = pf.cast<double>();
       if (!hangs(p)) continue;
@@ -154,7 +181,6 @@ OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
     // The spread of the middle half: the depth of the folds of a pleated face (a flat one's is the
     // sensor's noise and its panels').
     extent.fold_depth_m = Quantile(0.75, &distances) - Quantile(0.25, &distances);
-    break;
   }
   return extent;
 }

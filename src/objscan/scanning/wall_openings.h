@@ -30,6 +30,12 @@ struct WallOpeningOptions {
   double window_min_share = 0.5;  // share of an object's points in openings that makes it a window
   double window_keep_share = 0.1; // a window label needs at least this share
   double min_sill_height_m = 0.2; // a window's lowest point is this far above the floor (doors reach it)
+  // A window label also stays on an object off the floor (min_sill_height_m) of whose points at
+  // least hanging_window_min_share lie in front of one wall, within hanging_window_max_distance_m:
+  // a window mounted on the wall's face with no opening behind it, as in the SUNCG rooms of the OASC
+  // benchmark. Negative distance = only windows in openings keep the label.
+  double hanging_window_max_distance_m = 0.3;
+  double hanging_window_min_share = 0.9;
   // Objects labelled window whose points in wall openings come this close (their boxes) are pieces of
   // one window (frame, sashes and panes are pre-segmented apart, and each piece fits a window model);
   // they are reported as one. Negative = off (each piece is an object, as recognition left them).
@@ -68,6 +74,8 @@ struct WallOpeningOptions {
     v("window_min_share", window_min_share);
     v("window_keep_share", window_keep_share);
     v("min_sill_height_m", min_sill_height_m);
+    v("hanging_window_max_distance_m", hanging_window_max_distance_m);
+    v("hanging_window_min_share", hanging_window_min_share);
     v("join_gap_m", join_gap_m);
     v("curtain_max_distance_m", curtain_max_distance_m);
     v("curtain_min_share", curtain_min_share);
@@ -84,7 +92,7 @@ struct WallOpeningOptions {
 enum class WallOpeningVerdict {
   kNoChange,   // leave the label as recognition gave it
   kWindow,     // in a wall opening: a window (whatever its label; its size is the opening's)
-  kNotWindow,  // a window label on something that is not in an opening
+  kNotWindow,  // a window label on something neither in an opening nor hanging on a wall
 };
 
 struct WallOpeningResult {
@@ -131,6 +139,12 @@ std::vector<int> JoinWindowPieces(const std::vector<WindowPiece>& pieces, double
 // >= 0, any values) are one object: the complete one if any, else the one with most points (lowest
 // index on ties); itself for pieces of group -1. Only `complete` and `num_points` are read.
 std::vector<int> HostsOfGroups(const std::vector<int>& group, const std::vector<WindowPiece>& pieces);
+
+// The first wall (index into StructureResult::walls; -1 for none) in front of which, by at most
+// max_distance_m (behind it by at most min_depth_m) and within its span, at least min_share of the
+// points lie.
+int HangingWall(const std::vector<Eigen::Vector3f>& points_world, const mapping::StructureResult& structure,
+                double min_depth_m, double max_distance_m, double min_share);
 
 // Where an object hangs in front of a wall: the wall (-1 for none) in front of which, by at most
 // curtain_max_distance_m and within its span, at least curtain_min_share of the points lie, and the

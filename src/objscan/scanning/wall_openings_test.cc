@@ -65,12 +65,41 @@ TEST(WallOpeningTest, WallStripsAroundTheOpeningDoNotHideIt) {
 TEST(WallOpeningTest, ThingsInTheRoomAreNotWindows) {
   const mapping::StructureResult room = OneWallRoom();
   const WallOpeningOptions options;
-  // A cabinet front 40 cm in front of the wall, and a monitor 5 cm in front of it.
+  // A cabinet front 40 cm in front of the wall: no window, and a window label on it goes; so does
+  // one on a cabinet front standing on the floor 5 cm from the wall.
   EXPECT_EQ(ClassifyWallOpening(Pane(0.4, 1.0, 2.0, 0.0, 0.9), room, false, options).verdict,
             WallOpeningVerdict::kNoChange);
-  const WallOpeningResult monitor = ClassifyWallOpening(Pane(0.05, 1.0, 1.6, 0.8, 1.2), room, true, options);
-  EXPECT_EQ(monitor.share, 0.0);
-  EXPECT_EQ(monitor.verdict, WallOpeningVerdict::kNotWindow);
+  EXPECT_EQ(ClassifyWallOpening(Pane(0.4, 1.0, 2.0, 0.0, 0.9), room, true, options).verdict,
+            WallOpeningVerdict::kNotWindow);
+  const WallOpeningResult front = ClassifyWallOpening(Pane(0.05, 1.0, 1.6, 0.0, 0.9), room, true, options);
+  EXPECT_EQ(front.share, 0.0);
+  EXPECT_EQ(front.verdict, WallOpeningVerdict::kNotWindow);
+  // A pane hanging 40 cm in front of the wall, off the floor: too far from it to be mounted on it.
+  EXPECT_EQ(ClassifyWallOpening(Pane(0.4, 1.0, 1.6, 0.8, 1.2), room, true, options).verdict,
+            WallOpeningVerdict::kNotWindow);
+}
+
+// A window mounted on the wall's face (SUNCG rooms: no opening behind it) keeps its label: off the
+// floor, within hanging_window_max_distance_m in front of the wall. It is not made a window when
+// recognition did not call it one.
+TEST(WallOpeningTest, AWindowOnTheWallsFaceKeepsItsLabel) {
+  const mapping::StructureResult room = OneWallRoom();
+  WallOpeningOptions options;
+  std::vector<Eigen::Vector3f> window = Pane(0.03, 1.0, 3.0, 0.85, 2.25);  // the glass
+  Append(Pane(0.15, 1.0, 3.0, 0.85, 0.87), &window);                        // the sill, 15 cm out
+  const WallOpeningResult kept = ClassifyWallOpening(window, room, true, options);
+  EXPECT_EQ(kept.share, 0.0);
+  EXPECT_EQ(kept.verdict, WallOpeningVerdict::kNoChange);
+  EXPECT_EQ(ClassifyWallOpening(window, room, false, options).verdict, WallOpeningVerdict::kNoChange);
+  // Only openings count when the rule is off, and then the label goes.
+  options.hanging_window_max_distance_m = -1.0;
+  EXPECT_EQ(ClassifyWallOpening(window, room, true, options).verdict, WallOpeningVerdict::kNotWindow);
+  // With it on, a share of points away from the wall below hanging_window_min_share loses it too.
+  options = WallOpeningOptions();
+  Append(Pane(0.6, 1.0, 3.0, 0.85, 1.6), &window);  // as many points again, 60 cm out
+  EXPECT_EQ(ClassifyWallOpening(window, room, true, options).verdict, WallOpeningVerdict::kNotWindow);
+  options.hanging_window_min_share = 0.3;
+  EXPECT_EQ(ClassifyWallOpening(window, room, true, options).verdict, WallOpeningVerdict::kNoChange);
 }
 
 TEST(WallOpeningTest, AnOpeningThatReachesTheFloorIsNoWindow) {
@@ -100,6 +129,12 @@ TEST(WallOpeningTest, OptionsAreChecked) {
   EXPECT_ANY_THROW(o.Validate());
   o = WallOpeningOptions();
   o.window_min_share = 1.5;
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.hanging_window_max_distance_m = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_ANY_THROW(o.Validate());
+  o = WallOpeningOptions();
+  o.hanging_window_min_share = 1.5;
   EXPECT_ANY_THROW(o.Validate());
   o = WallOpeningOptions();
   o.join_gap_m = std::numeric_limits<double>::infinity();
