@@ -1230,7 +1230,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       if (best) s.Adopt(*best, &o);
     }
   }
-  // A door, or an unlabelled object, hanging over a window is a curtain (wall_openings.h).
+  // A door, an unlabelled object, or a window hanging on the wall (no opening behind it), hanging
+  // over a window in an opening is a curtain (wall_openings.h).
   if (openings.enabled && openings.curtain_max_distance_m >= 0.0) {
     std::vector<OpeningExtent> windows;
     for (std::size_t i = 0; i < host.size(); ++i) {
@@ -1246,7 +1247,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     for (std::size_t i = 0; !windows.empty() && i < host.size(); ++i) {
       ObjectRecord& o = rec.objects[i];
       if (host[i] != static_cast<int>(i) || in_opening[i]) continue;
-      if (o.category && o.category != world::Category::kDoor && o.category != world::Category::kCurtain) continue;
+      if (!MayBeCurtain(o.category, o.wall_opening_share.value_or(0.0), openings)) continue;
       const std::vector<Eigen::Vector3f>& seen = seen_points(i);
       const int window = CurtainWindow(HangingExtent(seen, s.structure, openings), windows, openings);
       if (window < 0) continue;

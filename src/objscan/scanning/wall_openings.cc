@@ -158,6 +158,12 @@ int HangingWall(const std::vector<Eigen::Vector3f>& points_world, const mapping:
   return -1;
 }
 
+bool MayBeCurtain(const std::optional<world::Category>& label, double wall_opening_share,
+                  const WallOpeningOptions& options) {
+  if (!label || *label == world::Category::kDoor || *label == world::Category::kCurtain) return true;
+  return *label == world::Category::kWindow && wall_opening_share < options.window_keep_share;
+}
+
 OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
                             const mapping::StructureResult& structure, const WallOpeningOptions& options) {
   OpeningExtent extent;

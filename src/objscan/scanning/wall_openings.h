@@ -10,12 +10,14 @@
 // database's pleats fall elsewhere than the scanned ones, so a flat model fits it as well). And
 // doors by their depth: a door model fits any flat face, but a door leaf is thin.
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "objscan/common/config.h"
 #include "objscan/geometry/aabb.h"
+#include "objscan/world/category.h"
 
 namespace objscan::mapping {
 struct StructureResult;
@@ -145,6 +147,13 @@ std::vector<int> HostsOfGroups(const std::vector<int>& group, const std::vector<
 // points lie.
 int HangingWall(const std::vector<Eigen::Vector3f>& points_world, const mapping::StructureResult& structure,
                 double min_depth_m, double max_distance_m, double min_share);
+
+// Whether an object not in a wall opening, with this label and share of points in openings, may be
+// found to be a curtain over a window: unlabelled, a door or a curtain, or a window label kept only
+// because the object hangs on a wall (share below window_keep_share). A curtain hanging on its rail
+// over a window is such an object too.
+bool MayBeCurtain(const std::optional<world::Category>& label, double wall_opening_share,
+                  const WallOpeningOptions& options);
 
 // Where an object hangs in front of a wall: the wall (-1 for none) in front of which, by at most
 // curtain_max_distance_m and within its span, at least curtain_min_share of the points lie, and the

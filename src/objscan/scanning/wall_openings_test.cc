@@ -102,6 +102,20 @@ TEST(WallOpeningTest, AWindowOnTheWallsFaceKeepsItsLabel) {
   EXPECT_EQ(ClassifyWallOpening(window, room, true, options).verdict, WallOpeningVerdict::kNoChange);
 }
 
+// A curtain hanging in front of the wall keeps a window label by the rule above; it may still be
+// found to be the curtain over a window in an opening, as unlabelled objects and doors may. A window
+// in an opening, and furniture, may not.
+TEST(WallOpeningTest, WindowsHangingOnTheWallMayBeCurtains) {
+  const WallOpeningOptions options;
+  EXPECT_TRUE(MayBeCurtain(std::nullopt, 0.0, options));
+  EXPECT_TRUE(MayBeCurtain(world::Category::kDoor, 0.0, options));
+  EXPECT_TRUE(MayBeCurtain(world::Category::kCurtain, 0.0, options));
+  EXPECT_TRUE(MayBeCurtain(world::Category::kWindow, 0.0, options));
+  EXPECT_FALSE(MayBeCurtain(world::Category::kWindow, options.window_keep_share, options));
+  EXPECT_FALSE(MayBeCurtain(world::Category::kWindow, 0.6, options));
+  EXPECT_FALSE(MayBeCurtain(world::Category::kDresser, 0.0, options));
+}
+
 TEST(WallOpeningTest, AnOpeningThatReachesTheFloorIsNoWindow) {
   const mapping::StructureResult room = OneWallRoom();
   const WallOpeningOptions options;
