@@ -409,13 +409,19 @@ struct Scanner::State {
     o->objectness = m.objectness;
   }
 
+  // m's database entry; nullptr for a match without one.
+  const recognition::DatabaseEntry* EntryOf(const segmentation::ModelMatch& m) const {
+    if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return nullptr;
+    return &database.entries()[static_cast<std::size_t>(m.entry_id)];
+  }
+
   // The points of m's database entry placed by m.T_world_model (none for a match without an entry).
   std::vector<Eigen::Vector3f> PlacedModelPoints(const segmentation::ModelMatch& m) const {
     std::vector<Eigen::Vector3f> points;
-    if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return points;
-    const auto& entry = database.entries()[static_cast<std::size_t>(m.entry_id)];
-    points.reserve(entry.points.size());
-    for (const auto& p : entry.points) points.push_back((m.T_world_model * p.cast<double>()).cast<float>());
+    const recognition::DatabaseEntry* entry = EntryOf(m);
+    if (entry == nullptr) return points;
+    points.reserve(entry->points.size());
+    for (const auto& p : entry->points) points.push_back((m.T_world_model * p.cast<double>()).cast<float>());
     return points;
   }
 
@@ -431,8 +437,9 @@ struct Scanner::State {
 
   // Fragment absorption's view of an object with a best model: the model's points and pose.
   void SetModel(const segmentation::ModelMatch& m, FragmentCandidate* f) const {
-    if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return;
-    f->model_points = &database.entries()[static_cast<std::size_t>(m.entry_id)].points;
+    const recognition::DatabaseEntry* entry = EntryOf(m);
+    if (entry == nullptr) return;
+    f->model_points = &entry->points;
     f->T_world_model = m.T_world_model;
   }
 
@@ -576,7 +583,7 @@ struct Scanner::State {
       // Matches without a database entry have no points to place; each placed set keeps its match.
       std::vector<const segmentation::ModelMatch*> placed;
       for (const auto& m : gamma.full_model_matches.models) {
-        if (m.entry_id < 0) continue;
+        if (EntryOf(m) == nullptr) continue;
         placed.push_back(&m);
         if (placed.size() >= 15) break;
       }
@@ -660,7 +667,7 @@ struct Scanner::State {
     };
     std::vector<Target> targets;
     const auto consider = [&](int id, const segmentation::ModelMatch* m, double objectness) {
-      if (m == nullptr || m->entry_id < 0 || m->entry_id >= static_cast<int>(database.entries().size())) return;
+      if (m == nullptr || EntryOf(*m) == nullptr) return;
       if (objectness < options.min_objectness || coverage_attempts[id] >= options.max_views_per_object) return;
       targets.push_back({id, m, m->T_world_model.translation()});
     };
@@ -977,8 +984,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     o.T_world_model = c.model.T_world_model;
     o.labels = c.labels;
     FragmentCandidate f;
-    const bool check_outgrown = completion_check.max_outside_share >= 0.0 && c.model.entry_id >= 0 &&
-                                c.model.entry_id < static_cast<int>(s.database.entries().size());
+    const recognition::DatabaseEntry* entry = s.EntryOf(c.model);
+    const bool check_outgrown = completion_check.max_outside_share >= 0.0 && entry != nullptr;
     // A completed door too deep to be one (wall_openings.h, TooDeepForADoor, false when off) is
     // reported unfinished; its door label is taken below.
     const bool check_door = c.model.category == world::Category::kDoor;
@@ -986,8 +993,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       std::vector<Eigen::Vector3f> seen = s.ComponentPoints(c.labels);
       bool reopen = check_door && TooDeepForADoor(seen, s.config.scanner.wall_openings);
       if (!reopen && check_outgrown) {
-        const auto& model_points = s.database.entries()[static_cast<std::size_t>(c.model.entry_id)].points;
-        reopen = ShareOutsideModelBox(seen, model_points, c.model.T_world_model, completion_check.margin_m) >
+        reopen = ShareOutsideModelBox(seen, entry->points, c.model.T_world_model, completion_check.margin_m) >
                  completion_check.max_outside_share;
       }
       if (reopen) {
