@@ -5,6 +5,7 @@
 // rate well below 1 whatever the robot does.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -58,5 +59,42 @@ struct CameraHeightBand {
 };
 std::vector<char> ExposedVoxels(const world::Scene& scene, const std::vector<Eigen::Vector3d>& voxel_centers_world,
                                 double voxel_m, const Eigen::Vector3d& seed_world, const CameraHeightBand& band = {});
+
+// The room's air as ExposedVoxels sees it: the empty voxels joined to the seed (between the floor's
+// top and the layer below the walls' top). Where a camera of the robot can be.
+class RoomAir {
+ public:
+  // Throws InputError as ExposedVoxels. Holds no air when the seed has no empty voxel near it.
+  RoomAir(const world::Scene& scene, double voxel_m, const Eigen::Vector3d& seed_world);
+
+  bool Contains(const Eigen::Vector3d& p_world) const;
+
+  // Limits where a camera can be to the robot's reach: within max_reach_m (horizontally) of a base
+  // position whose disk of base_radius_m is air from the floor up to base_height_m, joined on the
+  // floor to the seed's column. Contains() is unchanged; CameraCanBeAt() applies the limit.
+  void RestrictToRobotReach(double base_radius_m, double base_height_m, double max_reach_m);
+  bool CameraCanBeAt(const Eigen::Vector3d& p_world) const;
+
+  double voxel_m() const { return voxel_m_; }
+  double floor_top_m() const { return floor_top_m_; }  // 0 without a floor
+
+  // ExposedVoxels on this air.
+  std::vector<char> Exposed(const std::vector<Eigen::Vector3d>& voxel_centers_world,
+                            const CameraHeightBand& band = {}) const;
+
+ private:
+  Eigen::Vector3i KeyOf(const Eigen::Vector3d& p) const;
+  bool Inside(const Eigen::Vector3i& k) const;
+  std::size_t Index(const Eigen::Vector3i& k) const;
+
+  double voxel_m_ = 0.0;
+  double floor_top_m_ = 0.0;
+  Eigen::Vector3i min_key_ = Eigen::Vector3i::Zero();
+  Eigen::Vector3i size_ = Eigen::Vector3i::Zero();
+  std::vector<std::uint8_t> state_;  // 0 unreached empty, 1 touched by a triangle, 2 air
+  Eigen::Vector3i seed_key_ = Eigen::Vector3i::Zero();
+  int z_lo_ = 0;                      // lowest air layer
+  std::vector<std::uint8_t> camera_xy_;  // per x-y column: 1 within reach (empty = no limit)
+};
 
 }  // namespace objscan::eval

@@ -110,5 +110,25 @@ TEST(ExposedVoxels, RejectsANonPositiveVoxelSizeAndAnEmptyBand) {
   EXPECT_THROW(ExposedVoxels(RoomWithBox(), {}, 0.1, Eigen::Vector3d::Zero(), {1.0, 0.5}), InputError);
 }
 
+TEST(RoomAir, TheRobotsReachLimitsWhereTheCameraCanBe) {
+  // A 1 m high platform over x in [0, 2] leaves a 1 m strip of floor: base centres (radius 0.25)
+  // stand at x in [2.25, 2.75], so a camera reaching 0.6 m gets as far as x = 1.65.
+  world::Scene scene = Room(3.0, 3.0);
+  scene.Add(BoxObject({0.0, 0.0, 0.0}, {2.0, 3.0, 1.0}));
+  RoomAir air(scene, 0.05, Eigen::Vector3d(2.5, 1.5, 1.0));
+  const Eigen::Vector3d over_platform(1.4, 1.5, 1.5), near_edge(1.725, 1.5, 1.5), inside(1.0, 1.5, 0.5);
+  EXPECT_TRUE(air.CameraCanBeAt(over_platform));
+  EXPECT_FALSE(air.CameraCanBeAt(inside));
+  air.RestrictToRobotReach(0.25, 1.8, 0.6);
+  EXPECT_FALSE(air.CameraCanBeAt(over_platform));
+  EXPECT_TRUE(air.CameraCanBeAt(near_edge));
+  EXPECT_TRUE(air.Contains(over_platform));
+  // A robot too wide for the strip stands nowhere.
+  RoomAir wide(scene, 0.05, Eigen::Vector3d(2.5, 1.5, 1.0));
+  wide.RestrictToRobotReach(0.6, 1.8, 0.6);
+  EXPECT_FALSE(wide.CameraCanBeAt(near_edge));
+  EXPECT_THROW(wide.RestrictToRobotReach(-1.0, 1.8, 0.6), InputError);
+}
+
 }  // namespace
 }  // namespace objscan::eval

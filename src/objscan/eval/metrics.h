@@ -103,6 +103,7 @@ struct SurfaceVoxel {
   Eigen::Vector3d center_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal_world = Eigen::Vector3d::UnitZ();  // unit; its sign does not matter
   int instance = world::kNoInstance;                         // owning ground-truth instance
+  bool observable = true;  // a camera could measure it (eval/observability.h); not tested = true
 };
 
 // q(v) = exp(-theta^2 / (sigma^2 theta_t)) * exp(-(d - d_min)^2 / (sigma^2 d_t)) for one camera:

@@ -6,9 +6,11 @@
 #include <unordered_map>
 
 #include "objscan/eval/exposure.h"
+#include "objscan/eval/observability.h"
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/segmentation_quality.h"
+#include "objscan/sim/raycaster.h"
 
 namespace objscan::eval {
 namespace {
@@ -16,11 +18,14 @@ namespace {
 constexpr double kOnFloorMaxZ_m = 0.06;  // a ground object's lowest point is this close to the floor
 
 // Surface voxels of every non-structural object: triangles sampled at a fraction of the voxel size.
-std::vector<SurfaceVoxel> SurfaceVoxelsOf(const world::Scene& scene, double voxel_m) {
+// normal_lines (when given) receives each voxel's surface orientations.
+std::vector<SurfaceVoxel> SurfaceVoxelsOf(const world::Scene& scene, double voxel_m,
+                                          std::vector<NormalLines>* normal_lines) {
   const float inv = static_cast<float>(1.0 / voxel_m);
   struct Acc {
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     std::map<int, double> area;
+    NormalLines lines;
   };
   std::unordered_map<geometry::VoxelKey, Acc, geometry::VoxelKeyHash> acc;
   std::vector<geometry::VoxelKey> order;
@@ -41,12 +46,14 @@ std::vector<SurfaceVoxel> SurfaceVoxelsOf(const world::Scene& scene, double voxe
         if (inserted) order.push_back(k);
         it->second.normal += w * n.normalized();
         it->second.area[o.instance_id] += w;
+        if (normal_lines) AddNormalLine(&it->second.lines, n.normalized().cast<float>(), static_cast<float>(w));
       });
     }
   }
   std::sort(order.begin(), order.end());
   std::vector<SurfaceVoxel> voxels;
   voxels.reserve(order.size());
+  if (normal_lines) normal_lines->clear();
   for (const auto& k : order) {
     const Acc& a = acc.at(k);
     SurfaceVoxel v;
@@ -60,6 +67,7 @@ std::vector<SurfaceVoxel> SurfaceVoxelsOf(const world::Scene& scene, double voxe
       }
     }
     voxels.push_back(v);
+    if (normal_lines) normal_lines->push_back(a.lines);
   }
   return voxels;
 }
@@ -99,6 +107,7 @@ struct RunEvaluator::Impl {
   // V_S is fixed when the first camera position is known (the exposed voxels are those joined to it
   // through empty space); until then the voxels wait here.
   std::vector<SurfaceVoxel> surface_voxels;
+  std::vector<NormalLines> surface_normal_lines;  // parallel to surface_voxels until V_S is fixed
 
   CoverageOptions Options() const {
     CoverageOptions options;
@@ -117,6 +126,27 @@ struct RunEvaluator::Impl {
     coverage = std::make_unique<CoverageAccumulator>(std::move(voxels), Options());
   }
 
+  // Flags the voxels no camera in the robot's height band could measure (sensor range and dropout
+  // angle; observability.h).
+  void MarkObservable(std::vector<SurfaceVoxel>* voxels, const std::vector<NormalLines>& lines,
+                      const RoomAir& air) const {
+    ObservabilityOptions options;
+    options.min_range_m = config.sensor.min_range_m;
+    options.max_range_m = config.sensor.max_range_m;
+    options.max_incidence_deg = config.sensor.grazing_dropout_deg;
+    options.own_surface_m = 0.5 * std::sqrt(3.0) * voxel_m;
+    if (config.eval.coverage_robot_camera_heights) {
+      options.min_camera_z_m = air.floor_top_m() + config.robot.min_camera_height_m;
+      options.max_camera_z_m = air.floor_top_m() + config.robot.max_camera_height_m;
+    }
+    std::vector<Eigen::Vector3d> centers;
+    centers.reserve(voxels->size());
+    for (const auto& v : *voxels) centers.push_back(v.center_world);
+    const sim::Raycaster caster(scene.BuildTriangleSoup());
+    const std::vector<char> observable = ObservableVoxels(caster, centers, lines, options, &air);
+    for (std::size_t i = 0; i < voxels->size(); ++i) (*voxels)[i].observable = observable[i] != 0;
+  }
+
   // Keeps the surface voxels a camera at `seed_world`'s side of the scene could ever see.
   void BuildExposedCoverage(const Eigen::Vector3d& seed_world) {
     std::vector<Eigen::Vector3d> centers;
@@ -127,19 +157,33 @@ struct RunEvaluator::Impl {
       band.min_height_m = config.robot.min_camera_height_m;
       band.max_height_m = config.robot.max_camera_height_m;
     }
-    const std::vector<char> exposed = ExposedVoxels(scene, centers, voxel_m, seed_world, band);
+    RoomAir air(scene, voxel_m, seed_world);
+    if (config.eval.coverage_robot_reach) {
+      air.RestrictToRobotReach(config.robot.base_radius_m, config.robot.height_m, config.robot.max_reach_m);
+    }
+    const std::vector<char> exposed = air.Exposed(centers, band);
     std::vector<SurfaceVoxel> kept;
+    std::vector<NormalLines> kept_lines;
     for (std::size_t i = 0; i < surface_voxels.size(); ++i) {
-      if (exposed[i]) kept.push_back(surface_voxels[i]);
+      if (!exposed[i]) continue;
+      kept.push_back(surface_voxels[i]);
+      kept_lines.push_back(std::move(surface_normal_lines[i]));
     }
     surface_voxels.clear();
     surface_voxels.shrink_to_fit();
+    surface_normal_lines.clear();
+    surface_normal_lines.shrink_to_fit();
+    MarkObservable(&kept, kept_lines, air);
+    if (config.eval.coverage_observable_only) {
+      kept.erase(std::remove_if(kept.begin(), kept.end(), [](const SurfaceVoxel& v) { return !v.observable; }),
+                 kept.end());
+    }
     BuildCoverage(std::move(kept));
   }
 
   Impl(const world::Scene& s, const scanning::SystemConfig& c, std::vector<world::Category> cats)
       : scene(s), config(c), database_categories(std::move(cats)), voxel_m(c.eval.coverage_voxel_size_m) {
-    surface_voxels = SurfaceVoxelsOf(scene, voxel_m);
+    surface_voxels = SurfaceVoxelsOf(scene, voxel_m, c.eval.coverage_exposed_only ? &surface_normal_lines : nullptr);
     if (!c.eval.coverage_exposed_only) BuildCoverage(std::move(surface_voxels));
     for (const auto& o : scene.objects()) {
       if (o.IsStructural()) {
@@ -302,6 +346,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
       v.visible = quality[i] >= 0.0;
       v.detected = matched.count(v.instance) > 0;
       v.reported = reported_set.count(v.instance) > 0;
+      v.observable = voxels[i].observable;
       out.coverage_voxels.push_back(v);
     }
   }

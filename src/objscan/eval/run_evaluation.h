@@ -39,6 +39,7 @@ struct CoverageVoxelOutcome {
   bool visible = false;
   bool detected = false;  // on a matched instance (delta_detect of coverage_rate)
   bool reported = false;  // on the majority instance of a reported object (coverage_detected_rate)
+  bool observable = true;  // a camera could measure it (eval/observability.h)
 };
 
 struct RunMetrics {

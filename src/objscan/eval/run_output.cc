@@ -313,7 +313,7 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   // within range, so what the robot missed can be looked at.
   if (in.metrics) {
     io::PlyData coverage;
-    std::vector<std::int32_t> instance, category, visible, detected, reported;
+    std::vector<std::int32_t> instance, category, visible, detected, reported, observable;
     for (const auto& v : in.metrics->coverage_voxels) {
       coverage.points.push_back(v.center_world);
       coverage.normals.push_back(v.normal_world);
@@ -325,12 +325,14 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
       visible.push_back(v.visible ? 1 : 0);
       detected.push_back(v.detected ? 1 : 0);
       reported.push_back(v.reported ? 1 : 0);
+      observable.push_back(v.observable ? 1 : 0);
     }
     coverage.int_properties.emplace_back("instance", instance);
     coverage.int_properties.emplace_back("category_id", category);
     coverage.int_properties.emplace_back("visible", visible);
     coverage.int_properties.emplace_back("detected", detected);
     coverage.int_properties.emplace_back("reported", reported);
+    coverage.int_properties.emplace_back("observable", observable);
     io::WritePly((dir / "coverage.ply").string(), coverage);
   }
 

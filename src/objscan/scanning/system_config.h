@@ -36,6 +36,14 @@ struct EvaluationOptions {
   // (robot.min_camera_height_m to max_camera_height_m) can face: no undersides below the lowest
   // camera, no tops above the highest (eval/exposure.h). false: faces at any height count.
   bool coverage_robot_camera_heights = true;
+  // ... and of those, only voxels the depth camera could measure from some height in that band: a
+  // line of sight within the sensor's dropout angle of the surface, free for at least
+  // sensor.min_range_m (eval/observability.h). Drops faces in slits between an object and a wall or
+  // its neighbour. false: keep them (coverage.ply still flags them `observable` 0).
+  bool coverage_observable_only = true;
+  // ... where the camera must be within robot.max_reach_m of a base position that fits on the free
+  // floor (robot.base_radius_m, robot.height_m) joined to the start. false: anywhere in the room.
+  bool coverage_robot_reach = true;
   // An incomplete object counts as a recognition at termination when its objectness reaches this
   // (complete objects always count).
   double recognized_min_objectness = 0.5;
@@ -47,6 +55,8 @@ struct EvaluationOptions {
     v("coverage_voxel_size_m", coverage_voxel_size_m);
     v("coverage_exposed_only", coverage_exposed_only);
     v("coverage_robot_camera_heights", coverage_robot_camera_heights);
+    v("coverage_observable_only", coverage_observable_only);
+    v("coverage_robot_reach", coverage_robot_reach);
     v("recognized_min_objectness", recognized_min_objectness);
   }
   void Validate() const {
