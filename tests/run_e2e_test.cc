@@ -5,6 +5,8 @@
 
 #include "run_command.h"
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -73,14 +75,19 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
   const std::vector<std::int32_t>* visible = nullptr;
   const std::vector<std::int32_t>* detected = nullptr;
   const std::vector<std::int32_t>* reported = nullptr;
+  const std::vector<std::int32_t>* observable = nullptr;
   for (const auto& [name, values] : coverage.int_properties) {
     if (name == "visible") visible = &values;
     if (name == "detected") detected = &values;
     if (name == "reported") reported = &values;
+    if (name == "observable") observable = &values;
   }
   ASSERT_NE(visible, nullptr);
   ASSERT_NE(detected, nullptr);
   ASSERT_NE(reported, nullptr);
+  ASSERT_NE(observable, nullptr);
+  // By default V_S holds only observable voxels (eval/observability.h).
+  EXPECT_EQ(std::count(observable->begin(), observable->end(), 0), 0);
   long num_visible = 0, num_covered = 0, num_covered_reported = 0;
   for (std::size_t v = 0; v < visible->size(); ++v) {
     num_visible += (*visible)[v];
@@ -95,6 +102,24 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
   EXPECT_NEAR(static_cast<double>(num_covered) / surface, metrics["coverage_rate"].get<double>(), 1e-9);
   EXPECT_NEAR(static_cast<double>(num_covered_reported) / surface, metrics["coverage_detected_rate"].get<double>(),
               1e-9);
+
+  // Without eval.coverage_observable_only the same scan keeps the unobservable voxels in V_S,
+  // flagged 0; the observable ones are the default's V_S, voxel for voxel.
+  const Result c = RunObjscan(common + (dir / "c").string() + " --set eval.coverage_observable_only=false");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const objscan::io::PlyData all = objscan::io::ReadPly((dir / "c" / "coverage.ply").string());
+  const std::vector<std::int32_t>* all_observable = nullptr;
+  for (const auto& [name, values] : all.int_properties) {
+    if (name == "observable") all_observable = &values;
+  }
+  ASSERT_NE(all_observable, nullptr);
+  std::vector<std::array<float, 3>> kept, default_vs;
+  for (std::size_t v = 0; v < all.points.size(); ++v) {
+    if ((*all_observable)[v]) kept.push_back({all.points[v].x(), all.points[v].y(), all.points[v].z()});
+  }
+  for (const auto& p : coverage.points) default_vs.push_back({p.x(), p.y(), p.z()});
+  EXPECT_GT(all.points.size(), kept.size());
+  EXPECT_EQ(kept, default_vs);
   fs::remove_all(dir);
 }
 

@@ -29,6 +29,8 @@ struct CoverageViewOptions {
   // Candidate elevations, as nbv.candidates.ring_elevations_deg; a ring below the object's centre
   // shows the undersides of tables and chairs.
   std::vector<double> ring_elevations_deg = {-20.0, 10.0, 40.0};
+  // Candidates around the object, spread over the rings in turn (as nbv.candidates.num_candidates).
+  int num_candidates = 16;
 
   template <class V>
   void Visit(V& v) {
@@ -38,6 +40,7 @@ struct CoverageViewOptions {
     v("min_objectness", min_objectness);
     v("floor_clearance_m", floor_clearance_m);
     v("ring_elevations_deg", ring_elevations_deg);
+    v("num_candidates", num_candidates);
   }
   void Validate() const;
 };

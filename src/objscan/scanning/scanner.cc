@@ -652,6 +652,7 @@ struct Scanner::State {
   static planning::NextBestViewOptions CoverageNbvOptions(const SystemConfig& c) {
     planning::NextBestViewOptions o = c.nbv;
     o.candidates.ring_elevations_deg = c.scanner.coverage_views.ring_elevations_deg;
+    o.candidates.num_candidates = c.scanner.coverage_views.num_candidates;
     return o;
   }
 
