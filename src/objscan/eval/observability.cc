@@ -116,11 +116,17 @@ std::vector<char> ObservableVoxels(const sim::Raycaster& caster, const std::vect
         const double z1 = centers_world[i].z() + end_m * dz;
         if (std::max(z0, z1) < options.min_camera_z_m || std::min(z0, z1) > options.max_camera_z_m) continue;
         if (!camera_air) return 1;
-        // A camera position in the band and in the room's air, at half-voxel steps.
-        const double step_m = 0.5 * camera_air->voxel_m();
-        for (double s = options.min_range_m; s <= end_m; s += step_m) {
-          const Eigen::Vector3d p = centers_world[i] + s * d.cast<double>();
-          if (p.z() >= options.min_camera_z_m && p.z() <= options.max_camera_z_m && camera_air->CameraCanBeAt(p)) return 1;
+        // The stretch of the ray inside the band, then a camera position on it where the camera can
+        // be, at voxel steps.
+        double s0 = options.min_range_m, s1 = end_m;
+        if (std::abs(dz) > 1e-9) {
+          const double a = (options.min_camera_z_m - centers_world[i].z()) / dz;
+          const double b = (options.max_camera_z_m - centers_world[i].z()) / dz;
+          s0 = std::max(s0, std::min(a, b));
+          s1 = std::min(s1, std::max(a, b));
+        }
+        for (double s = s0; s <= s1; s += camera_air->voxel_m()) {
+          if (camera_air->CameraCanBeAt(centers_world[i] + s * d.cast<double>())) return 1;
         }
       }
     }
