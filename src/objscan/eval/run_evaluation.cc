@@ -126,8 +126,9 @@ struct RunEvaluator::Impl {
     coverage = std::make_unique<CoverageAccumulator>(std::move(voxels), Options());
   }
 
-  // Flags the voxels no camera in the robot's height band could measure (sensor range and dropout
-  // angle; observability.h).
+  // Flags the voxels the robot's camera could not measure from anywhere it can be (`air`: the room,
+  // within reach when restricted; its height band; the sensor's range and dropout angle;
+  // observability.h).
   void MarkObservable(std::vector<SurfaceVoxel>* voxels, const std::vector<NormalLines>& lines,
                       const RoomAir& air) const {
     ObservabilityOptions options;
