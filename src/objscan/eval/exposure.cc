@@ -120,8 +120,9 @@ void RoomAir::RestrictToRobotReach(double base_radius_m, double base_height_m, d
     throw InputError("RoomAir: the robot's radius, height and reach must be non-negative");
   }
   const int nx = size_.x(), ny = size_.y();
-  camera_xy_.assign(static_cast<std::size_t>(nx) * ny, 0);
+  camera_xy_.clear();
   if (state_.empty()) return;
+  camera_xy_.assign(static_cast<std::size_t>(nx) * ny, 0);
   // Columns that are air from the layer above the floor up to the robot's height.
   const int z_top = std::min(min_key_.z() + size_.z() - 1,
                              static_cast<int>(std::floor((floor_top_m_ + base_height_m) / voxel_m_)));
@@ -160,11 +161,12 @@ void RoomAir::RestrictToRobotReach(double base_radius_m, double base_height_m, d
       base[static_cast<std::size_t>(y) * nx + x] = fits ? 1 : 0;
     }
   }
-  // Base positions joined to the seed's column (or the nearest base cell within the robot's radius).
+  // Base positions joined to the seed's column, or to the nearest base cell within a metre of it (the
+  // robot stands at the seed; a lamp hanging over it must not leave it nowhere). None: no limit.
   const Eigen::Vector2i seed_xy = (seed_key_ - min_key_).head<2>();
   Eigen::Vector2i start(-1, -1);
   double best = 1e18;
-  for (const auto& o : disk(base_radius_m + voxel_m_)) {
+  for (const auto& o : disk(std::max(1.0, base_radius_m + voxel_m_))) {
     const Eigen::Vector2i c = seed_xy + o;
     if (!in(c.x(), c.y()) || !base[static_cast<std::size_t>(c.y()) * nx + c.x()]) continue;
     if (o.squaredNorm() < best) {
@@ -172,7 +174,10 @@ void RoomAir::RestrictToRobotReach(double base_radius_m, double base_height_m, d
       start = c;
     }
   }
-  if (start.x() < 0) return;
+  if (start.x() < 0) {
+    camera_xy_.clear();
+    return;
+  }
   std::vector<std::uint8_t> reached(base.size(), 0);
   std::deque<Eigen::Vector2i> queue{start};
   reached[static_cast<std::size_t>(start.y()) * nx + start.x()] = 1;

@@ -71,7 +71,8 @@ class RoomAir {
 
   // Limits where a camera can be to the robot's reach: within max_reach_m (horizontally) of a base
   // position whose disk of base_radius_m is air from the floor up to base_height_m, joined on the
-  // floor to the seed's column. Contains() is unchanged; CameraCanBeAt() applies the limit.
+  // floor to the seed's column (or to the nearest such position within 1 m of it; with none, no
+  // limit). Contains() is unchanged; CameraCanBeAt() applies the limit.
   void RestrictToRobotReach(double base_radius_m, double base_height_m, double max_reach_m);
   bool CameraCanBeAt(const Eigen::Vector3d& p_world) const;
 

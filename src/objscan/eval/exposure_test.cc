@@ -123,11 +123,27 @@ TEST(RoomAir, TheRobotsReachLimitsWhereTheCameraCanBe) {
   EXPECT_FALSE(air.CameraCanBeAt(over_platform));
   EXPECT_TRUE(air.CameraCanBeAt(near_edge));
   EXPECT_TRUE(air.Contains(over_platform));
-  // A robot too wide for the strip stands nowhere.
+  // A robot too wide for the strip would stand nowhere, yet it stands at the start: no limit then.
   RoomAir wide(scene, 0.05, Eigen::Vector3d(2.5, 1.5, 1.0));
   wide.RestrictToRobotReach(0.6, 1.8, 0.6);
-  EXPECT_FALSE(wide.CameraCanBeAt(near_edge));
+  EXPECT_TRUE(wide.CameraCanBeAt(over_platform));
   EXPECT_THROW(wide.RestrictToRobotReach(-1.0, 1.8, 0.6), InputError);
+}
+
+TEST(RoomAir, ARobotStartingUnderAShelfStillReachesTheRoom) {
+  // A board at 1.5 m over the start: its column is not free up to the robot's height, the floor
+  // around it is.
+  world::Scene scene = Room(3.0, 3.0);
+  scene.Add(BoxObject({1.3, 1.3, 1.5}, {1.7, 1.7, 1.52}));
+  scene.Add(BoxObject({0.0, 0.0, 0.0}, {0.5, 3.0, 2.2}));  // a tall wardrobe along x = 0
+  RoomAir air(scene, 0.05, Eigen::Vector3d(1.5, 1.5, 1.0));
+  air.RestrictToRobotReach(0.25, 1.8, 0.6);
+  EXPECT_TRUE(air.CameraCanBeAt(Eigen::Vector3d(2.5, 2.5, 1.0)));
+  EXPECT_TRUE(air.CameraCanBeAt(Eigen::Vector3d(1.5, 1.5, 1.2)));
+  // Base centres stand clear of the wardrobe's front (x >= 0.8), so a camera above the wardrobe
+  // reaches x = 0.2 and no further towards the wall.
+  EXPECT_TRUE(air.CameraCanBeAt(Eigen::Vector3d(0.3, 1.5, 2.3)));
+  EXPECT_FALSE(air.CameraCanBeAt(Eigen::Vector3d(0.1, 1.5, 2.3)));
 }
 
 }  // namespace
