@@ -1,6 +1,7 @@
 #include "objscan/scanning/coverage_views.h"
 
 #include <cmath>
+#include <string>
 
 namespace objscan::scanning {
 
@@ -9,7 +10,8 @@ void CoverageViewOptions::Validate() const {
   config::Require(min_unseen_voxels >= 1, "scanner.coverage_views.min_unseen_voxels", "must be >= 1");
   config::RequireInRange("scanner.coverage_views.min_objectness", min_objectness, 0.0, 1.0);
   config::RequireNonNegative("scanner.coverage_views.floor_clearance_m", floor_clearance_m);
-  config::RequireInRange("scanner.coverage_views.num_candidates", num_candidates, 1, 256);
+  config::Require(num_candidates >= 1 && num_candidates <= 256, "scanner.coverage_views.num_candidates",
+                  "must be in [1, 256] (got " + std::to_string(num_candidates) + ")");
   config::Require(!ring_elevations_deg.empty(), "scanner.coverage_views.ring_elevations_deg", "must not be empty");
   for (double e : ring_elevations_deg) {
     config::RequireInRange("scanner.coverage_views.ring_elevations_deg", e, -89.0, 89.0);
