@@ -131,7 +131,7 @@ void RoomAir::RestrictToRobotReach(double base_radius_m, double base_height_m, d
     for (int x = 0; x < nx; ++x) {
       bool air = true;
       for (int z = std::max(z_lo_ + 1, min_key_.z()); z <= z_top && air; ++z) {
-        air = state_[Index(min_key_ + Eigen::Vector3i(x, y, z - min_key_.z()))] == 2;
+        air = state_[Index(Eigen::Vector3i(min_key_.x() + x, min_key_.y() + y, z))] == 2;
       }
       free[static_cast<std::size_t>(y) * nx + x] = air ? 1 : 0;
     }
@@ -236,9 +236,6 @@ std::vector<char> RoomAir::Exposed(const std::vector<Eigen::Vector3d>& voxel_cen
 
 std::vector<char> ExposedVoxels(const world::Scene& scene, const std::vector<Eigen::Vector3d>& voxel_centers_world,
                                 double voxel_m, const Eigen::Vector3d& seed_world, const CameraHeightBand& band) {
-  if (std::isnan(band.min_height_m) || std::isnan(band.max_height_m) || band.min_height_m > band.max_height_m) {
-    throw InputError("ExposedVoxels: the camera height band must be an interval");
-  }
   return RoomAir(scene, voxel_m, seed_world).Exposed(voxel_centers_world, band);
 }
 

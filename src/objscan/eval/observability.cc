@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 #include <string>
 
 #include "objscan/common/error.h"
@@ -13,19 +12,6 @@
 
 namespace objscan::eval {
 namespace {
-
-// Evenly spread, deterministic unit directions.
-std::vector<Eigen::Vector3f> FibonacciSphere(int n) {
-  std::vector<Eigen::Vector3f> d(n);
-  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / n;
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    d[i] = Eigen::Vector3f(static_cast<float>(r * std::cos(golden_angle * i)),
-                           static_cast<float>(r * std::sin(golden_angle * i)), static_cast<float>(z));
-  }
-  return d;
-}
 
 void Validate(const ObservabilityOptions& o) {
   auto fail = [](const std::string& what) { throw InputError("ObservableVoxels: " + what); };
@@ -69,7 +55,7 @@ std::vector<char> ObservableVoxels(const sim::Raycaster& caster, const std::vect
     throw InputError("ObservableVoxels: " + std::to_string(centers_world.size()) + " centres but " +
                      std::to_string(normal_lines.size()) + " normal line sets");
   }
-  const std::vector<Eigen::Vector3f> sphere = FibonacciSphere(options.num_directions);
+  const std::vector<Eigen::Vector3f> sphere = sim::FibonacciDirections(options.num_directions);
   const float min_cos = static_cast<float>(std::cos(options.max_incidence_deg * M_PI / 180.0));
   const double free_margin_m = 0.01;  // a camera is not on the surface it would stop at
   std::vector<char> observable(centers_world.size(), 0);

@@ -283,18 +283,25 @@ void Raycaster::SegmentsBlocked(const float* from_xyz, const float* to_xyz, std:
   impl_->ThrowOnDeviceError("occlusion query");
 }
 
+std::vector<Eigen::Vector3f> FibonacciDirections(int n) {
+  std::vector<Eigen::Vector3f> directions;
+  if (n < 1) return directions;
+  directions.reserve(static_cast<std::size_t>(n));
+  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / n;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    directions.emplace_back(static_cast<float>(r * std::cos(golden_angle * i)),
+                            static_cast<float>(r * std::sin(golden_angle * i)), static_cast<float>(z));
+  }
+  return directions;
+}
+
 PointProbe Raycaster::Probe(const Eigen::Vector3d& point, int num_directions, double max_distance_m) const {
   if (num_directions < 1) throw InputError("probe: num_directions must be >= 1");
-  // Fibonacci sphere: evenly spread, deterministic directions.
-  std::vector<float> directions(3 * static_cast<std::size_t>(num_directions));
-  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < num_directions; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / num_directions;
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    directions[3 * i] = static_cast<float>(r * std::cos(golden_angle * i));
-    directions[3 * i + 1] = static_cast<float>(r * std::sin(golden_angle * i));
-    directions[3 * i + 2] = static_cast<float>(z);
-  }
+  std::vector<float> directions;
+  directions.reserve(3 * static_cast<std::size_t>(num_directions));
+  for (const Eigen::Vector3f& d : FibonacciDirections(num_directions)) directions.insert(directions.end(), {d.x(), d.y(), d.z()});
   const float origin[3] = {float(point.x()), float(point.y()), float(point.z())};
   std::vector<RayHit> hits(num_directions);
   Cast(origin, true, directions.data(), hits.size(), 0.f, static_cast<float>(max_distance_m), hits.data());

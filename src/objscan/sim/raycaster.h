@@ -43,6 +43,9 @@ struct PointProbe {
   bool inside = false;
 };
 
+// `n` evenly spread, deterministic unit directions (Fibonacci sphere), from +z towards -z.
+std::vector<Eigen::Vector3f> FibonacciDirections(int n);
+
 class Raycaster {
  public:
   // Commits the soup once. Throws InputError when an index is out of range or a vertex is not

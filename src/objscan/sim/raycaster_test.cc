@@ -161,5 +161,21 @@ TEST(RaycasterTest, ProbeTellsInsideFromOutside) {
   EXPECT_NEAR(outside.clearance_m, 1.5, 1.5 * 0.03);
 }
 
+TEST(RaycasterTest, FibonacciDirectionsAreUnitEvenAndSpreadOverTheSphere) {
+  const std::vector<Eigen::Vector3f> d = FibonacciDirections(256);
+  ASSERT_EQ(d.size(), 256u);
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  int upper = 0;
+  for (const auto& v : d) {
+    EXPECT_NEAR(v.norm(), 1.f, 1e-5f);
+    sum += v;
+    upper += v.z() > 0.f ? 1 : 0;
+  }
+  EXPECT_EQ(upper, 128);                 // z runs evenly from +1 to -1
+  EXPECT_LT(sum.norm() / 256.f, 0.01f);  // no direction favoured
+  EXPECT_GT(d.front().z(), 0.99f);
+  EXPECT_TRUE(FibonacciDirections(0).empty());
+}
+
 }  // namespace
 }  // namespace objscan::sim
