@@ -29,6 +29,7 @@ struct DbArgs {
   std::string eval_db;
   std::string queries = "procedural";
   int variants = 8;
+  std::string sampling = "styles";  // as the built-in database
   int queries_per_category = 5;
   int threads = 0;
   std::uint64_t seed = 1;
@@ -51,7 +52,8 @@ int RunBuild(const DbArgs& a) {
   std::vector<std::string> skipped;
   if (a.models == "procedural") {
     if (a.variants < 1) throw InputError("--variants must be at least 1");
-    sources = recognition::ProceduralModelSources(a.variants);
+    sources = recognition::ProceduralModelSources(
+        a.variants, 0, recognition::ParseProceduralSampling(a.sampling, "--sampling"));
   } else {
     sources = recognition::ModelSourcesFromFolder(a.models, &skipped);
   }
@@ -151,6 +153,9 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
       ->required();
   build->add_option("--out", args->out, "output database file F.db")->required();
   build->add_option("--variants", args->variants, "procedural models per category")->default_str("8");
+  build->add_option("--sampling", args->sampling,
+                    "procedural models per category: 'styles' (every style of the generator in turn), 'spread' (k-medoids over sizes) or 'first-seeds'")
+      ->default_str("styles");
   build->add_option("--threads", args->threads, "models scanned in parallel (0 = all cores; same result)")
       ->default_str("0");
   build->add_option("--seed", args->seed, "seed of the vocabulary (and of scan noise when on)")->default_str("1");

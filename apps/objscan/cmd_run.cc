@@ -38,6 +38,9 @@ struct RunArgs {
 };
 
 constexpr int kDefaultDatabaseVariants = 8;
+// Every style of each category's generator in the built-in database (database_builder.h): on the 60
+// procedural rooms of seeds 1-12 it gave coverage 72.4% against 69.1% with the first eight seeds.
+constexpr recognition::ProceduralSampling kDefaultDatabaseSampling = recognition::ProceduralSampling::kStyles;
 
 std::string CacheDir() {
   if (const char* d = std::getenv("OBJSCAN_CACHE_DIR")) return d;
@@ -67,7 +70,9 @@ std::string DefaultDatabasePath(bool verbose) {
   namespace fs = std::filesystem;
   const recognition::DatabaseBuildOptions options;
   const std::string path = CacheDir() + "/procedural-v" + std::to_string(recognition::ModelDatabase::kFormatVersion) +
-                           "-n" + std::to_string(kDefaultDatabaseVariants) + "-" + BuildOptionsKey(options) + ".db";
+                           "-n" + std::to_string(kDefaultDatabaseVariants) + "-" +
+                           recognition::ProceduralSamplingName(kDefaultDatabaseSampling) + "-" + BuildOptionsKey(options) +
+                           ".db";
   if (fs::exists(path)) return path;
   std::error_code ec;
   fs::create_directories(CacheDir(), ec);
@@ -76,7 +81,8 @@ std::string DefaultDatabasePath(bool verbose) {
     std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n", path.c_str());
   }
   const recognition::ModelDatabase db = recognition::BuildDatabase(
-      recognition::ProceduralModelSources(kDefaultDatabaseVariants), options, TerminalProgress("database"));
+      recognition::ProceduralModelSources(kDefaultDatabaseVariants, 0, kDefaultDatabaseSampling), options,
+      TerminalProgress("database"));
   FinishProgress();
   db.Save(path);
   return path;

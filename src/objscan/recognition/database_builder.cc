@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -218,10 +219,124 @@ std::vector<ModelSource> ModelSourcesFromFolder(const std::string& folder, std::
   return sources;
 }
 
-std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index) {
+const char* ProceduralSamplingName(ProceduralSampling sampling) {
+  switch (sampling) {
+    case ProceduralSampling::kSpread: return "spread";
+    case ProceduralSampling::kStyles: return "styles";
+    default: return "first-seeds";
+  }
+}
+
+ProceduralSampling ParseProceduralSampling(const std::string& name, const std::string& field) {
+  if (name == "spread") return ProceduralSampling::kSpread;
+  if (name == "styles") return ProceduralSampling::kStyles;
+  if (name == "first-seeds") return ProceduralSampling::kFirstSeeds;
+  throw InputError(field + ": unknown procedural sampling '" + name + "' (expected styles, spread or first-seeds)");
+}
+
+std::vector<int> GreedyMedoids(const std::vector<std::vector<double>>& features, int count) {
+  const int n = static_cast<int>(features.size());
+  count = std::clamp(count, 0, n);
+  std::vector<double> dist(static_cast<std::size_t>(n) * n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      double d2 = 0.0;
+      for (std::size_t f = 0; f < features[i].size(); ++f) d2 += std::pow(features[i][f] - features[j][f], 2);
+      dist[static_cast<std::size_t>(i) * n + j] = std::sqrt(d2);
+    }
+  }
+  std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
+  std::vector<char> chosen(n, 0);
+  std::vector<int> out;
+  for (int step = 0; step < count; ++step) {
+    int best = -1;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < n; ++j) {
+      if (chosen[j]) continue;
+      double cost = 0.0;
+      for (int i = 0; i < n; ++i) cost += std::min(nearest[i], dist[static_cast<std::size_t>(i) * n + j]);
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = j;
+      }
+    }
+    chosen[best] = 1;
+    out.push_back(best);
+    for (int i = 0; i < n; ++i) nearest[i] = std::min(nearest[i], dist[static_cast<std::size_t>(i) * n + best]);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+namespace {
+
+// The pool indices (offsets from first_index) of a category's spread sample.
+std::vector<int> SpreadIndices(world::Category category, int variants, std::uint64_t first_index) {
+  const int pool = variants * kSpreadPoolPerVariant;
+  std::vector<std::vector<double>> size(pool);
+  for (int k = 0; k < pool; ++k) {
+    const geometry::Aabb3 box = geometry::Bounds(
+        world::procedural::GenerateFurniture(category, world::procedural::DatabaseModelSeed(first_index + k)).mesh);
+    const Eigen::Vector3d extent = box.max_m - box.min_m;
+    size[k] = {extent.z(), extent.y(), extent.x()};  // height, width, depth (front faces +X)
+  }
+  // Each dimension over its standard deviation in the pool (a constant one drops out).
+  for (int f = 0; f < 3; ++f) {
+    double mean = 0.0, var = 0.0;
+    for (const auto& s : size) mean += s[f] / pool;
+    for (const auto& s : size) var += (s[f] - mean) * (s[f] - mean) / pool;
+    const double sd = std::sqrt(var);
+    for (auto& s : size) s[f] = sd > 1e-9 ? s[f] / sd : 0.0;
+  }
+  return GreedyMedoids(size, variants);
+}
+
+// The pool indices of a category's style-stratified sample.
+std::vector<int> StyleIndices(world::Category category, int variants, std::uint64_t first_index) {
+  const int pool = variants * kSpreadPoolPerVariant;
+  const std::string prefix = std::string(world::CategoryName(category)) + "_";
+  std::vector<int> style_of(pool);
+  std::vector<std::string> styles;  // in order of first appearance
+  for (int k = 0; k < pool; ++k) {
+    std::string name =
+        world::procedural::GenerateFurniture(category, world::procedural::DatabaseModelSeed(first_index + k)).name;
+    if (name.compare(0, prefix.size(), prefix) == 0) name = name.substr(prefix.size());
+    const std::string style = name.substr(0, name.find('_'));
+    auto it = std::find(styles.begin(), styles.end(), style);
+    if (it == styles.end()) it = styles.insert(styles.end(), style);
+    style_of[k] = static_cast<int>(it - styles.begin());
+  }
+  std::vector<int> drawn(styles.size(), 0);
+  std::vector<char> used(pool, 0);
+  std::vector<int> out;
+  for (int slot = 0; slot < variants; ++slot) {
+    int best = -1;
+    for (int k = 0; k < pool; ++k) {
+      if (used[k]) continue;
+      if (best < 0 || drawn[style_of[k]] < drawn[style_of[best]] ||
+          (drawn[style_of[k]] == drawn[style_of[best]] && style_of[k] < style_of[best])) {
+        best = k;
+      }
+    }
+    used[best] = 1;
+    ++drawn[style_of[best]];
+    out.push_back(best);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index,
+                                                ProceduralSampling sampling) {
   std::vector<ModelSource> sources;
   for (world::Category category : world::procedural::FurnitureCategories()) {
-    for (int k = 0; k < variants; ++k) {
+    std::vector<int> indices(static_cast<std::size_t>(std::max(0, variants)));
+    std::iota(indices.begin(), indices.end(), 0);
+    if (sampling == ProceduralSampling::kSpread) indices = SpreadIndices(category, variants, first_index);
+    if (sampling == ProceduralSampling::kStyles) indices = StyleIndices(category, variants, first_index);
+    for (int k : indices) {
       const std::uint64_t seed = world::procedural::DatabaseModelSeed(first_index + k);
       ModelSource s;
       s.category = category;

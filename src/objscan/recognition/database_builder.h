@@ -74,9 +74,36 @@ struct ModelSource {
 // missing or yields no model.
 std::vector<ModelSource> ModelSourcesFromFolder(const std::string& folder, std::vector<std::string>* skipped_folders);
 
-// `variants` procedural models per furniture category, from database model seeds
-// DatabaseModelSeed(first_index) ... DatabaseModelSeed(first_index + variants - 1).
-std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index = 0);
+// How a procedural database draws its models of each category.
+enum class ProceduralSampling {
+  // The first `variants` database seeds: DatabaseModelSeed(first_index) ... (+ variants - 1).
+  kFirstSeeds,
+  // `variants` models that spread over the category's shapes: from a pool of the first
+  // variants * kSpreadPoolPerVariant seeds, greedy k-medoids on the models' bounding-box size
+  // (height, width, depth, each over its spread in the pool). Eight random draws of a category
+  // with six styles miss some of them (the first eight cabinets hold no filing cabinet and no
+  // pantry); medoids cover every part of the shape range in proportion to how common it is.
+  kSpread,
+  // Every style of the generator in turn: the style is the first word of a model's name after its
+  // category ("cabinet_filing_s7" -> "filing"); each model is the first unused one of the pool
+  // (the first variants * kSpreadPoolPerVariant seeds) among the styles drawn least so far, styles
+  // taken in the order they first appear in the pool.
+  kStyles,
+};
+constexpr int kSpreadPoolPerVariant = 4;
+// "first-seeds" / "spread" / "styles"; ParseProceduralSampling throws InputError naming `field` otherwise.
+const char* ProceduralSamplingName(ProceduralSampling sampling);
+ProceduralSampling ParseProceduralSampling(const std::string& name, const std::string& field);
+
+// `variants` procedural models per furniture category, named "<category>/<k>" for the model of seed
+// DatabaseModelSeed(first_index + k).
+std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index = 0,
+                                                ProceduralSampling sampling = ProceduralSampling::kFirstSeeds);
+
+// Greedy k-medoids: `count` indices into `features` (rows of equal length), ascending. Each step adds
+// the row that most lowers the summed distance of all rows to their nearest chosen one (the lowest
+// index on ties), so the same rows give the same choice.
+std::vector<int> GreedyMedoids(const std::vector<std::vector<double>>& features, int count);
 
 // The mesh of a database model from its `source` string (procedural or a file), normalised the way
 // the builder does. Throws InputError when the source cannot be loaded.

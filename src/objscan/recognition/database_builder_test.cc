@@ -189,5 +189,88 @@ TEST(DatabaseBuilderTest, OascDevMeshesBuildALoadableDatabaseThatAnswersQueries)
   EXPECT_GT(similar[0].objectness.objectness, 0.3);
 }
 
+
+// The style word of a generated model's name ("cabinet_filing_s7" -> "filing").
+std::string StyleOf(const ModelSource& s) {
+  const std::string prefix = std::string(world::CategoryName(s.category)) + "_";
+  const std::string seed = s.source.substr(s.source.rfind('/') + 1);
+  std::string name = world::procedural::GenerateFurniture(s.category, std::stoull(seed)).name.substr(prefix.size());
+  return name.substr(0, name.find('_'));
+}
+
+std::vector<ModelSource> OfCategory(const std::vector<ModelSource>& all, world::Category category) {
+  std::vector<ModelSource> out;
+  for (const auto& s : all) {
+    if (s.category == category) out.push_back(s);
+  }
+  return out;
+}
+
+TEST(GreedyMedoidsTest, PicksOneRowPerWellSeparatedClusterAndIsDeterministic) {
+  // Three clusters on a line. Summed distances to all rows: 39.8 from 0.2, 40.0 from 10.1, so one
+  // medoid is 0.2; then 10.1 (total 10.3 against 10.4 for 10.0), then 20.
+  const std::vector<std::vector<double>> rows = {{0.0}, {10.0}, {0.1}, {20.0}, {0.2}, {10.1}};
+  EXPECT_EQ(GreedyMedoids(rows, 1), (std::vector<int>{4}));
+  EXPECT_EQ(GreedyMedoids(rows, 3), (std::vector<int>{3, 4, 5}));
+  EXPECT_EQ(GreedyMedoids(rows, 3), GreedyMedoids(rows, 3));
+  EXPECT_EQ(GreedyMedoids(rows, 9), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  EXPECT_TRUE(GreedyMedoids(rows, 0).empty());
+}
+
+TEST(ProceduralSamplingTest, StylesCoverEveryCabinetStyleTheFirstSeedsMiss) {
+  const std::set<std::string> all_styles = {"kitchenbase", "pantry", "wardrobe", "sideboard", "display", "filing"};
+  std::set<std::string> first, styles;
+  for (const auto& s : OfCategory(ProceduralModelSources(8), world::Category::kCabinet)) first.insert(StyleOf(s));
+  const auto stratified = OfCategory(ProceduralModelSources(8, 0, ProceduralSampling::kStyles), world::Category::kCabinet);
+  ASSERT_EQ(stratified.size(), 8u);
+  for (const auto& s : stratified) styles.insert(StyleOf(s));
+  EXPECT_EQ(styles, all_styles);
+  EXPECT_LT(first.size(), all_styles.size()) << "the case the stratified sampling is for";
+  // Six styles in six slots: each exactly once.
+  std::multiset<std::string> six;
+  for (const auto& s : OfCategory(ProceduralModelSources(6, 0, ProceduralSampling::kStyles), world::Category::kCabinet)) {
+    six.insert(StyleOf(s));
+  }
+  for (const auto& style : all_styles) EXPECT_EQ(six.count(style), 1u) << style;
+  // Names stay unique and the same call gives the same models.
+  std::set<std::string> names;
+  const auto again = ProceduralModelSources(8, 0, ProceduralSampling::kStyles);
+  const auto once = ProceduralModelSources(8, 0, ProceduralSampling::kStyles);
+  ASSERT_EQ(again.size(), once.size());
+  for (std::size_t i = 0; i < once.size(); ++i) {
+    EXPECT_EQ(once[i].source, again[i].source);
+    EXPECT_TRUE(names.insert(once[i].name).second) << once[i].name;
+  }
+}
+
+TEST(ProceduralSamplingTest, SpreadCoversTheHeightRangeOfShelves) {
+  const auto spread = OfCategory(ProceduralModelSources(8, 0, ProceduralSampling::kSpread), world::Category::kShelves);
+  ASSERT_EQ(spread.size(), 8u);
+  std::vector<double> heights;
+  for (const auto& s : spread) {
+    const geometry::Aabb3 box = geometry::Bounds(s.load_mesh());
+    heights.push_back(box.max_m.z() - box.min_m.z());
+  }
+  // The first eight seeds hold no shelves between 0.96 m and 1.61 m tall, where most rooms' are.
+  const auto mid = [](double h) { return h > 1.1 && h < 1.55; };
+  EXPECT_TRUE(std::any_of(heights.begin(), heights.end(), mid));
+  for (const auto& s : OfCategory(ProceduralModelSources(8), world::Category::kShelves)) {
+    const geometry::Aabb3 box = geometry::Bounds(s.load_mesh());
+    EXPECT_FALSE(mid(box.max_m.z() - box.min_m.z())) << "the case the spread sampling is for";
+  }
+}
+
+TEST(ProceduralSamplingTest, NamesParseAndUnknownOnesAreRejected) {
+  for (ProceduralSampling s : {ProceduralSampling::kFirstSeeds, ProceduralSampling::kSpread, ProceduralSampling::kStyles}) {
+    EXPECT_EQ(ParseProceduralSampling(ProceduralSamplingName(s), "--sampling"), s);
+  }
+  try {
+    ParseProceduralSampling("random", "--sampling");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--sampling"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace objscan::recognition
