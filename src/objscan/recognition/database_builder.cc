@@ -270,13 +270,24 @@ std::vector<int> GreedyMedoids(const std::vector<std::vector<double>>& features,
 
 namespace {
 
+// The pool a sampling draws a category's models from: the models of the first
+// variants * kSamplingPoolPerVariant database seeds, in seed order.
+std::vector<world::procedural::FurnitureModel> SamplingPool(world::Category category, int variants,
+                                                            std::uint64_t first_index) {
+  std::vector<world::procedural::FurnitureModel> pool;
+  for (int k = 0; k < variants * kSamplingPoolPerVariant; ++k) {
+    pool.push_back(world::procedural::GenerateFurniture(category, world::procedural::DatabaseModelSeed(first_index + k)));
+  }
+  return pool;
+}
+
 // The pool indices (offsets from first_index) of a category's spread sample.
 std::vector<int> SpreadIndices(world::Category category, int variants, std::uint64_t first_index) {
-  const int pool = variants * kSpreadPoolPerVariant;
+  const std::vector<world::procedural::FurnitureModel> models = SamplingPool(category, variants, first_index);
+  const int pool = static_cast<int>(models.size());
   std::vector<std::vector<double>> size(pool);
   for (int k = 0; k < pool; ++k) {
-    const geometry::Aabb3 box = geometry::Bounds(
-        world::procedural::GenerateFurniture(category, world::procedural::DatabaseModelSeed(first_index + k)).mesh);
+    const geometry::Aabb3 box = geometry::Bounds(models[k].mesh);
     const Eigen::Vector3d extent = box.max_m - box.min_m;
     size[k] = {extent.z(), extent.y(), extent.x()};  // height, width, depth (front faces +X)
   }
@@ -293,13 +304,13 @@ std::vector<int> SpreadIndices(world::Category category, int variants, std::uint
 
 // The pool indices of a category's style-stratified sample.
 std::vector<int> StyleIndices(world::Category category, int variants, std::uint64_t first_index) {
-  const int pool = variants * kSpreadPoolPerVariant;
+  const std::vector<world::procedural::FurnitureModel> models = SamplingPool(category, variants, first_index);
+  const int pool = static_cast<int>(models.size());
   const std::string prefix = std::string(world::CategoryName(category)) + "_";
   std::vector<int> style_of(pool);
   std::vector<std::string> styles;  // in order of first appearance
   for (int k = 0; k < pool; ++k) {
-    std::string name =
-        world::procedural::GenerateFurniture(category, world::procedural::DatabaseModelSeed(first_index + k)).name;
+    std::string name = models[k].name;
     if (name.compare(0, prefix.size(), prefix) == 0) name = name.substr(prefix.size());
     const std::string style = name.substr(0, name.find('_'));
     auto it = std::find(styles.begin(), styles.end(), style);

@@ -79,18 +79,18 @@ enum class ProceduralSampling {
   // The first `variants` database seeds: DatabaseModelSeed(first_index) ... (+ variants - 1).
   kFirstSeeds,
   // `variants` models that spread over the category's shapes: from a pool of the first
-  // variants * kSpreadPoolPerVariant seeds, greedy k-medoids on the models' bounding-box size
+  // variants * kSamplingPoolPerVariant seeds, greedy k-medoids on the models' bounding-box size
   // (height, width, depth, each over its spread in the pool). Eight random draws of a category
   // with six styles miss some of them (the first eight cabinets hold no filing cabinet and no
   // pantry); medoids cover every part of the shape range in proportion to how common it is.
   kSpread,
   // Every style of the generator in turn: the style is the first word of a model's name after its
   // category ("cabinet_filing_s7" -> "filing"); each model is the first unused one of the pool
-  // (the first variants * kSpreadPoolPerVariant seeds) among the styles drawn least so far, styles
+  // (the first variants * kSamplingPoolPerVariant seeds) among the styles drawn least so far, styles
   // taken in the order they first appear in the pool.
   kStyles,
 };
-constexpr int kSpreadPoolPerVariant = 4;
+constexpr int kSamplingPoolPerVariant = 4;
 // "first-seeds" / "spread" / "styles"; ParseProceduralSampling throws InputError naming `field` otherwise.
 const char* ProceduralSamplingName(ProceduralSampling sampling);
 ProceduralSampling ParseProceduralSampling(const std::string& name, const std::string& field);
