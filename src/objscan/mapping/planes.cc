@@ -37,6 +37,10 @@ bool StructureResult::InsideWalls(const Eigen::Vector3d& p, double margin_m) con
 
 bool StructureResult::OnStructure(const Eigen::Vector3d& p, double distance_m) const {
   if (has_floor && std::fabs(p.z() - floor_height_m) < distance_m) return true;
+  return NearWall(p, distance_m);
+}
+
+bool StructureResult::NearWall(const Eigen::Vector3d& p, double distance_m) const {
   for (const WallPlane& w : walls) {
     if (std::fabs(w.SignedDistance(p)) >= distance_m) continue;
     const double s = w.Along(p);

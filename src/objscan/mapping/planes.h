@@ -82,6 +82,8 @@ struct StructureResult {
   // True when p lies within distance_m of the floor or of a wall plane (within its span widened by
   // distance_m).
   bool OnStructure(const Eigen::Vector3d& p, double distance_m) const;
+  // True when p lies within distance_m of a wall plane (within its span widened by distance_m).
+  bool NearWall(const Eigen::Vector3d& p, double distance_m) const;
   // True when p, on a surface with unit normal n, lies inside a wall's thickness: behind the wall
   // plane by less than depth_m, within its span, on a face across the wall (|n . wall normal| <
   // max_cos). Such faces are the reveals of door and window openings, which belong to the wall.

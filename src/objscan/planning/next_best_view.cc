@@ -196,14 +196,24 @@ NextBestViewResult NextBestView::Plan(const NextBestViewInput& input, const View
   const geometry::Aabb3 bounds = CheckedBounds(input);
   result.target_world = bounds.Center();
   result.radius_m = 0.5 * bounds.Diagonal();
-  const std::vector<geometry::Pose3> poses =
+  std::vector<geometry::Pose3> poses =
       GenerateViewCandidates(result.target_world, result.radius_m, input.frustum, options_.candidates);
+  // Where each candidate looks (its line of sight is checked to there).
+  std::vector<Eigen::Vector3d> looks_at(poses.size(), result.target_world);
+  if (input.aim_points_world != nullptr && !input.aim_points_world->empty()) {
+    geometry::Aabb3 aim;
+    ExtendChecked(*input.aim_points_world, "nbv input: aim_points_world", &aim);
+    const std::vector<geometry::Pose3> aimed =
+        GenerateViewCandidates(aim.Center(), 0.5 * aim.Diagonal(), input.frustum, options_.candidates);
+    poses.insert(poses.end(), aimed.begin(), aimed.end());
+    looks_at.resize(poses.size(), aim.Center());
+  }
   result.candidates.resize(poses.size());
   bool any_valid = false;
   for (std::size_t j = 0; j < poses.size(); ++j) {
     ViewCandidate& c = result.candidates[j];
     c.T_world_camera = poses[j];
-    c.validity = validator != nullptr ? validator->Check(poses[j], result.target_world) : ViewValidity::kValid;
+    c.validity = validator != nullptr ? validator->Check(poses[j], looks_at[j]) : ViewValidity::kValid;
     c.gain.gain_per_model.assign(input.models.size(), 0.0);
     c.gain.visible_voxels_per_model.assign(input.models.size(), 0);
     any_valid = any_valid || c.validity == ViewValidity::kValid;

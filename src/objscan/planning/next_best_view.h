@@ -78,6 +78,11 @@ struct NextBestViewInput {
   bool has_camera_position = false;
   Eigen::Vector3d camera_position_world = Eigen::Vector3d::Zero();
   ViewGainMeasure gain_measure = ViewGainMeasure::kInformation;
+  // Beyond the paper (coverage views): when non-empty, as many candidates again, generated the same
+  // way around the bounding box of these points (the part of the object still to be seen, e.g. a
+  // bathtub's inside) and appended after those around the whole object. They come closer and look
+  // more steeply at that part than views framing the whole object can.
+  const std::vector<Eigen::Vector3f>* aim_points_world = nullptr;
 };
 
 // Gain of one view.

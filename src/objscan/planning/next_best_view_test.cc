@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "objscan/common/error.h"
 #include "objscan/planning/information_gain.h"
@@ -202,6 +204,60 @@ TEST(NextBestViewTest, UnobservedSurfaceCountsTheUnseenVoxelsOfOneModel) {
   in.gamma_points_world = &s.cube;
   r = nbv.Plan(in, nullptr);
   for (const ViewCandidate& c : r.candidates) EXPECT_EQ(c.gain.gain, 0.0);
+}
+
+class RecordTargets : public ViewValidator {
+ public:
+  ViewValidity Check(const geometry::Pose3&, const Eigen::Vector3d& target) const override {
+    targets.push_back(target);
+    return ViewValidity::kValid;
+  }
+  mutable std::vector<Eigen::Vector3d> targets;
+};
+
+TEST(NextBestViewTest, AimPointsAddCandidatesLookingAtThem) {
+  // The plain cube seen on its -X half; aiming at the unseen +X half adds a second ring set of
+  // candidates, each looking at that half's centre and validated against it.
+  const DisagreeOnPlusX s;
+  NextBestViewOptions four;
+  four.candidates.num_candidates = 4;
+  four.candidates.ring_elevations_deg = {15.0};
+  NextBestView nbv(four);
+  NextBestViewInput in = s.Input();
+  in.models = {ModelHypothesis{2, 1.0, &s.model_b}};
+  in.gain_measure = ViewGainMeasure::kUnobservedSurface;
+  Points aim;
+  for (const Eigen::Vector3f& p : s.cube) {
+    if (p.x() > 0.0f) aim.push_back(p);
+  }
+  in.aim_points_world = &aim;
+  const RecordTargets validator;
+  const NextBestViewResult r = nbv.Plan(in, &validator);
+  ASSERT_EQ(r.status, NbvStatus::kOk);
+  ASSERT_EQ(r.candidates.size(), 8u);
+  ASSERT_EQ(validator.targets.size(), 8u);
+  geometry::Aabb3 box;
+  for (const auto& p : aim) box.Extend(p.cast<double>());
+  for (int j = 0; j < 8; ++j) {
+    const Eigen::Vector3d target = j < 4 ? r.target_world : box.Center();
+    EXPECT_LT((validator.targets[j] - target).norm(), 1e-9) << j;
+    const geometry::Pose3& T = r.candidates[j].T_world_camera;
+    const Eigen::Vector3d to_target = (target - T.translation()).normalized();
+    EXPECT_GT(to_target.dot(T.linear().col(2)), 1.0 - 1e-6) << j;  // the optical axis points at it
+  }
+  // The aimed +X candidate is nearer the unseen half than the whole-object one and sees it too.
+  EXPECT_LT((r.candidates[4].T_world_camera.translation() - box.Center()).norm(),
+            (r.candidates[0].T_world_camera.translation() - box.Center()).norm() + 1e-9);
+  EXPECT_GT(r.candidates[4].gain.gain, 576.0);
+  // Without aim points: the four around the whole object only, with the same gains as before.
+  in.aim_points_world = nullptr;
+  const NextBestViewResult plain = nbv.Plan(in, nullptr);
+  ASSERT_EQ(plain.candidates.size(), 4u);
+  for (int j = 0; j < 4; ++j) EXPECT_EQ(plain.candidates[j].gain.gain, r.candidates[j].gain.gain);
+  Points bad = aim;
+  bad.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f);
+  in.aim_points_world = &bad;
+  EXPECT_THROW(nbv.Plan(in, nullptr), InputError);
 }
 
 TEST(NextBestViewTest, OccludedVoxelsDoNotCount) {

@@ -4,37 +4,56 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "objscan/recognition/model_database.h"
 
 namespace objscan::recognition {
 
-ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_steps) {
+namespace {
+
+// The range [lo, hi] of `values` between the k-th smallest and the k-th largest (k = 0: extremes).
+// Reorders `values`.
+std::pair<float, float> TrimmedRange(std::vector<float>* values, std::size_t k) {
+  auto& v = *values;
+  if (k == 0) {
+    const auto mm = std::minmax_element(v.begin(), v.end());
+    return {*mm.first, *mm.second};
+  }
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  const float lo = v[k];
+  const std::size_t top = v.size() - 1 - k;
+  std::nth_element(v.begin() + static_cast<std::ptrdiff_t>(k), v.begin() + static_cast<std::ptrdiff_t>(top), v.end());
+  return {lo, v[top]};
+}
+
+}  // namespace
+
+ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_steps, double trim_fraction) {
   ObjectExtent e;
   if (points.empty()) return e;
   yaw_steps = std::max(1, yaw_steps);
-  float z_min = std::numeric_limits<float>::infinity(), z_max = -z_min;
-  for (const auto& p : points) {
-    z_min = std::min(z_min, p.z());
-    z_max = std::max(z_max, p.z());
-  }
-  e.height_m = static_cast<double>(z_max - z_min);
+  const double trim = std::isfinite(trim_fraction) ? std::clamp(trim_fraction, 0.0, 0.49) : 0.0;
+  const std::size_t k = static_cast<std::size_t>(trim * static_cast<double>(points.size()));
+  std::vector<float> a(points.size()), b(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) a[i] = points[i].z();
+  const auto z = TrimmedRange(&a, k);
+  e.height_m = static_cast<double>(z.second - z.first);
   // A rectangle rotated by yaw and by yaw + 90° is the same one, so yaw in [0, 90°) covers all.
   double best = std::numeric_limits<double>::infinity();
   const double kPi = 3.14159265358979323846;
   for (int s = 0; s < yaw_steps; ++s) {
     const double yaw = 0.5 * kPi * s / yaw_steps;
     const float c = static_cast<float>(std::cos(yaw)), sn = static_cast<float>(std::sin(yaw));
-    float u_min = std::numeric_limits<float>::infinity(), u_max = -u_min, v_min = u_min, v_max = -u_min;
-    for (const auto& p : points) {
-      const float u = c * p.x() + sn * p.y();
-      const float v = -sn * p.x() + c * p.y();
-      u_min = std::min(u_min, u);
-      u_max = std::max(u_max, u);
-      v_min = std::min(v_min, v);
-      v_max = std::max(v_max, v);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector3f& p = points[i];
+      a[i] = c * p.x() + sn * p.y();
+      b[i] = -sn * p.x() + c * p.y();
     }
-    best = std::min(best, std::hypot(static_cast<double>(u_max - u_min), static_cast<double>(v_max - v_min)));
+    const auto u = TrimmedRange(&a, k);
+    const auto v = TrimmedRange(&b, k);
+    best = std::min(best, std::hypot(static_cast<double>(u.second - u.first), static_cast<double>(v.second - v.first)));
   }
   e.footprint_diagonal_m = best;
   return e;
@@ -73,6 +92,8 @@ CategoryExtents CategoryExtents::FromDatabase(const ModelDatabase& database) {
 
 void SizePlausibilityOptions::Validate() const {
   config::RequireInRange("scanner.size_check.min_ratio", min_ratio, 0.0, 1.0);
+  config::RequireInRange("scanner.size_check.extent_trim_fraction", extent_trim_fraction, 0.0, 0.25);
+  config::RequireNonNegative("scanner.size_check.wall_margin_m", wall_margin_m);
   config::RequirePositive("scanner.size_check.adjacency_m", adjacency_m);
   config::Require(std::isfinite(support_gap_m), "scanner.size_check.support_gap_m",
                   "must be a number (negative = off)");

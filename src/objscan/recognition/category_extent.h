@@ -25,8 +25,12 @@ struct ObjectExtent {
 
 // The extent of a point set (Z up); zeros when empty. The rectangle is searched over yaw in steps
 // of 90° / yaw_steps, so its diagonal overestimates the smallest one's by at most a factor
-// sqrt(1 + sin(90° / yaw_steps)) (1.05 for 16 steps).
-ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_steps = 16);
+// sqrt(1 + sin(90° / yaw_steps)) (1.05 for 16 steps). With trim_fraction > 0, each range (height,
+// and each side of the rectangle) runs between the trim_fraction and 1 - trim_fraction quantiles
+// of the points instead of their extremes, so that a few stray points (noisy wall returns that
+// joined an object) do not set its size.
+ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_steps = 16,
+                           double trim_fraction = 0.0);
 
 struct ExtentRange {
   ObjectExtent min;  // component-wise over the category's models
@@ -55,6 +59,15 @@ struct SizePlausibilityOptions {
   // objects (or a wall) taken for one.
   double min_ratio = 0.5;
   double max_ratio = 1.4;
+  // A reconstructed object's extent leaves out this share of its points at each end of each range
+  // (MeasureExtent's trim_fraction); 0 = its extreme points. Database models are measured whole.
+  double extent_trim_fraction = 0.005;
+  // Before that, the scanner leaves out of a reconstructed object's extent its points within this
+  // distance of a detected wall plane, unless that leaves less than half of them (a door, a window,
+  // a curtain lies along a wall). Noisy far returns of a wall (the depth noise is 2-3 cm at 3-4 m)
+  // escape the wall tags and join the furniture before it; they would make it as long as the wall.
+  // 0 = off.
+  double wall_margin_m = 0.08;
   // An object whose label a check took (this one, or a window label outside wall openings) takes the
   // best-fitting other category among its full-model matches that its size fits, when that match's
   // objectness reaches relabel_min_objectness; false (or no such match) = it is reported
@@ -79,6 +92,8 @@ struct SizePlausibilityOptions {
     v("enabled", enabled);
     v("min_ratio", min_ratio);
     v("max_ratio", max_ratio);
+    v("extent_trim_fraction", extent_trim_fraction);
+    v("wall_margin_m", wall_margin_m);
     v("relabel", relabel);
     v("relabel_min_objectness", relabel_min_objectness);
     v("regroup", regroup);

@@ -40,6 +40,30 @@ TEST(MeasureExtentTest, ExactOnAStepAndZeroWhenEmpty) {
   EXPECT_EQ(none.footprint_diagonal_m, 0.0);
 }
 
+TEST(MeasureExtentTest, TrimmingLeavesStrayPointsOut) {
+  // A 0.6 x 0.8 x 1.2 m box (footprint diagonal 1.0 m, on the yaw grid) and a few stray points far
+  // above and beside it, under 0.5% of the points: the extremes take the strays, the 1% quantiles not.
+  std::vector<Eigen::Vector3f> points = BoxPoints({0.6, 0.8, 1.2}, 0.0, {0, 0, 0.6});
+  const std::size_t n_box = points.size();
+  const std::size_t n_stray = n_box / 400;
+  ASSERT_GE(n_stray, 3u);
+  for (std::size_t i = 0; i < n_stray; ++i) {
+    const float t = static_cast<float>(i) / static_cast<float>(n_stray);
+    points.emplace_back(-0.3f, -0.4f + 3.0f * t, 2.5f);  // a line along a wall, 1.3 m above the box
+  }
+  const ObjectExtent whole = MeasureExtent(points);
+  EXPECT_NEAR(whole.height_m, 2.5, 1e-5);
+  EXPECT_GT(whole.footprint_diagonal_m, 2.5);
+  const ObjectExtent trimmed = MeasureExtent(points, 16, 0.01);
+  EXPECT_NEAR(trimmed.height_m, 1.2, 0.03);
+  EXPECT_NEAR(trimmed.footprint_diagonal_m, 1.0, 0.05);
+  EXPECT_LE(trimmed.footprint_diagonal_m, 1.0 + 1e-4);
+  // Trimming nothing is the whole extent; a trimmed range never exceeds the whole one.
+  const ObjectExtent zero = MeasureExtent(points, 16, 0.0);
+  EXPECT_EQ(zero.height_m, whole.height_m);
+  EXPECT_EQ(zero.footprint_diagonal_m, whole.footprint_diagonal_m);
+}
+
 TEST(CategoryExtentsTest, RangesAreComponentWiseOverTheModels) {
   CategoryExtents extents;
   extents.Add(world::Category::kLamp, {0.4, 0.3});

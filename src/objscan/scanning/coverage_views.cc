@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <string>
+#include <unordered_set>
+
+#include "objscan/geometry/voxel_key.h"
 
 namespace objscan::scanning {
 
@@ -25,6 +28,28 @@ std::vector<Eigen::Vector3f> ModelSurfaceAboveFloor(const std::vector<Eigen::Vec
   out.reserve(model_points_world.size());
   for (const Eigen::Vector3f& p : model_points_world) {
     if (p.z() >= min_z) out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3f> UnseenModelPoints(const std::vector<Eigen::Vector3f>& model_points_world,
+                                               const std::vector<Eigen::Vector3f>& seen_points_world,
+                                               double seen_radius_m) {
+  if (!(seen_radius_m > 0.0)) return model_points_world;
+  const float inv = static_cast<float>(1.0 / seen_radius_m);
+  std::unordered_set<geometry::VoxelKey, geometry::VoxelKeyHash> seen;
+  seen.reserve(seen_points_world.size());
+  for (const Eigen::Vector3f& p : seen_points_world) seen.insert(geometry::KeyOf(p, inv));
+  std::vector<Eigen::Vector3f> out;
+  for (const Eigen::Vector3f& p : model_points_world) {
+    const geometry::VoxelKey k = geometry::KeyOf(p, inv);
+    bool near = false;
+    for (int dx = -1; dx <= 1 && !near; ++dx) {
+      for (int dy = -1; dy <= 1 && !near; ++dy) {
+        for (int dz = -1; dz <= 1 && !near; ++dz) near = seen.count({k.x + dx, k.y + dy, k.z + dz}) > 0;
+      }
+    }
+    if (!near) out.push_back(p);
   }
   return out;
 }

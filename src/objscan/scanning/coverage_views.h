@@ -31,6 +31,10 @@ struct CoverageViewOptions {
   std::vector<double> ring_elevations_deg = {-20.0, 10.0, 40.0};
   // Candidates around the object, spread over the rings in turn (as nbv.candidates.num_candidates).
   int num_candidates = 16;
+  // Beyond framing the whole object: as many candidates again around the part of its model not yet
+  // seen (UnseenModelPoints, away from the walls), which come closer and look more steeply into it
+  // (the inside of a bathtub, a sink's basin, the far end of a long sofa). false = only the former.
+  bool aim_at_unseen = false;
 
   template <class V>
   void Visit(V& v) {
@@ -41,6 +45,7 @@ struct CoverageViewOptions {
     v("floor_clearance_m", floor_clearance_m);
     v("ring_elevations_deg", ring_elevations_deg);
     v("num_candidates", num_candidates);
+    v("aim_at_unseen", aim_at_unseen);
   }
   void Validate() const;
 };
@@ -49,5 +54,12 @@ struct CoverageViewOptions {
 // false, measured from z = 0 then).
 std::vector<Eigen::Vector3f> ModelSurfaceAboveFloor(const std::vector<Eigen::Vector3f>& model_points_world,
                                                     bool has_floor, double floor_height_m, double clearance_m);
+
+// The model points with no seen point near them: none in the same or a neighbouring cell of a grid of
+// cell size seen_radius_m (so every seen point within seen_radius_m counts, and none beyond
+// 2 sqrt(3) seen_radius_m). Order kept.
+std::vector<Eigen::Vector3f> UnseenModelPoints(const std::vector<Eigen::Vector3f>& model_points_world,
+                                               const std::vector<Eigen::Vector3f>& seen_points_world,
+                                               double seen_radius_m);
 
 }  // namespace objscan::scanning

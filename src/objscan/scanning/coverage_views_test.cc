@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "objscan/common/error.h"
@@ -20,6 +22,26 @@ TEST(CoverageViewsTest, SurfaceUnderTheFloorClearanceIsLeftOut) {
   // Without a detected floor the clearance is measured from z = 0: everything here is above 0.03 m.
   EXPECT_EQ(ModelSurfaceAboveFloor(model, false, 0.1, 0.03).size(), model.size());
   EXPECT_TRUE(ModelSurfaceAboveFloor({}, true, 0.0, 0.03).empty());
+}
+
+TEST(CoverageViewsTest, UnseenModelPointsAreThoseWithNoSeenPointNearby) {
+  // A model row along x every 1 cm from 0 to 1 m; the robot saw the row from 0 to 0.5 m.
+  std::vector<Eigen::Vector3f> model, seen;
+  for (int i = 0; i <= 100; ++i) model.emplace_back(0.01f * static_cast<float>(i), 0.0f, 0.5f);
+  for (int i = 0; i <= 50; ++i) seen.emplace_back(0.01f * static_cast<float>(i), 0.0f, 0.5f);
+  const float r = 0.05f;
+  const auto unseen = UnseenModelPoints(model, seen, r);
+  ASSERT_FALSE(unseen.empty());
+  // Every point within r of a seen one is seen; none beyond 2 sqrt(3) r is.
+  for (const auto& p : unseen) EXPECT_GT(p.x(), 0.5f + r - 1e-4f);
+  for (const auto& p : model) {
+    if (p.x() > 0.5f + 2.0f * std::sqrt(3.0f) * r) {
+      EXPECT_NE(std::find(unseen.begin(), unseen.end(), p), unseen.end()) << p.x();
+    }
+  }
+  // Nothing seen: all unseen; everything seen: none.
+  EXPECT_EQ(UnseenModelPoints(model, {}, r).size(), model.size());
+  EXPECT_TRUE(UnseenModelPoints(model, model, r).empty());
 }
 
 TEST(CoverageViewsTest, BadOptionsNameTheirField) {

@@ -656,6 +656,10 @@ struct Scanner::State {
     return o;
   }
 
+  // Model surface this close to a wall is not aimed at by coverage views (coverage_views.h,
+  // aim_at_unseen): an object's back against the wall is never seen.
+  static constexpr double kCoverageAimWallMarginM = 0.1;
+
   // One view completing the scan of a reported object (coverage_views.h); false when no object has
   // a view showing enough of its unseen model surface.
   bool CoverageStep(StepRecord* step) {
@@ -708,6 +712,15 @@ struct Scanner::State {
       input.has_camera_position = true;
       input.camera_position_world = robot.CameraPose().translation();
       input.gain_measure = planning::ViewGainMeasure::kUnobservedSurface;
+      // The model surface still unseen, leaving out what lies against a wall (no view reaches it).
+      std::vector<Eigen::Vector3f> aim;
+      if (options.aim_at_unseen) {
+        for (const auto& p : UnseenModelPoints(model_points, seen, margin_m)) {
+          const Eigen::Vector3d q = p.cast<double>();
+          if (structure.InsideWalls(q, 0.0) && !structure.NearWall(q, kCoverageAimWallMarginM)) aim.push_back(p);
+        }
+        input.aim_points_world = &aim;
+      }
       std::vector<geometry::Pose3> earlier = views_of[t.id];
       earlier.push_back(robot.CameraPose());
       MapViewValidator validator(occupancy, robot, navigator,
@@ -1137,7 +1150,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   for (std::size_t i = 0; i < host.size(); ++i) {
     if (host[i] != static_cast<int>(i)) continue;
     ObjectRecord& o = rec.objects[i];
-    extents[i] = recognition::MeasureExtent(object_points[i]);
+    extents[i] = recognition::MeasureExtent(PointsAwayFromWalls(object_points[i], s.structure, size_check.wall_margin_m), 16,
+                                            size_check.extent_trim_fraction);
     o.height_m = extents[i].height_m;
     o.footprint_diagonal_m = extents[i].footprint_diagonal_m;
     if (full_matches[i] == nullptr) continue;

@@ -6,6 +6,7 @@
 
 #include "objscan/geometry/point_cloud.h"
 #include "objscan/geometry/voxel_key.h"
+#include "objscan/mapping/planes.h"
 
 namespace objscan::scanning {
 
@@ -42,7 +43,7 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
            out.category[static_cast<std::size_t>(i)].has_value();
   };
   std::vector<recognition::ObjectExtent> extent(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) extent[static_cast<std::size_t>(i)] = recognition::MeasureExtent(points[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < n; ++i) extent[static_cast<std::size_t>(i)] = recognition::MeasureExtent(points[static_cast<std::size_t>(i)], 16, options.extent_trim_fraction);
   std::set<int> tried_and_stayed;  // implausible objects no neighbour takes (until something changes)
   while (true) {
     // The smallest implausible object not yet known to stay.
@@ -61,7 +62,7 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
       if (!movable(h)) continue;
       std::vector<Eigen::Vector3f> joined = points[static_cast<std::size_t>(h)];
       joined.insert(joined.end(), points[static_cast<std::size_t>(piece)].begin(), points[static_cast<std::size_t>(piece)].end());
-      const recognition::ObjectExtent e = recognition::MeasureExtent(joined);
+      const recognition::ObjectExtent e = recognition::MeasureExtent(joined, 16, options.extent_trim_fraction);
       const world::Category host_category = *out.category[static_cast<std::size_t>(h)];
       const world::Category piece_category = *out.category[static_cast<std::size_t>(piece)];
       const bool host_plausible = fits(extent[static_cast<std::size_t>(h)], host_category);
@@ -174,7 +175,7 @@ RegroupResult JoinStackedPieces(const std::vector<RegroupCandidate>& objects, do
     const auto& from_points = out.points_world[static_cast<std::size_t>(from)];
     joined.insert(joined.end(), from_points.begin(), from_points.end());
     const world::Category label = *objects[static_cast<std::size_t>(into)].category;
-    if (!recognition::IsPlausibleExtent(recognition::MeasureExtent(joined), extents.Find(label), options)) continue;
+    if (!recognition::IsPlausibleExtent(recognition::MeasureExtent(joined, 16, options.extent_trim_fraction), extents.Find(label), options)) continue;
     out.points_world[static_cast<std::size_t>(into)] = std::move(joined);
     out.points_world[static_cast<std::size_t>(from)].clear();
     // What joined `from` before now belongs to `into`: hosts are always objects that host themselves.
@@ -237,6 +238,17 @@ std::vector<std::pair<int, int>> ObjectsStandingUnder(const std::vector<std::vec
     }
   }
   return pairs;
+}
+
+std::vector<Eigen::Vector3f> PointsAwayFromWalls(const std::vector<Eigen::Vector3f>& points,
+                                                 const mapping::StructureResult& structure, double wall_margin_m) {
+  if (wall_margin_m <= 0.0 || structure.walls.empty()) return points;
+  std::vector<Eigen::Vector3f> away;
+  away.reserve(points.size());
+  for (const auto& p : points) {
+    if (!structure.NearWall(p.cast<double>(), wall_margin_m)) away.push_back(p);
+  }
+  return 2 * away.size() >= points.size() ? away : points;
 }
 
 }  // namespace objscan::scanning

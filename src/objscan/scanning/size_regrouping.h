@@ -14,6 +14,10 @@
 #include "objscan/recognition/category_extent.h"
 #include "objscan/world/category.h"
 
+namespace objscan::mapping {
+struct StructureResult;
+}  // namespace objscan::mapping
+
 namespace objscan::scanning {
 
 struct RegroupCandidate {
@@ -68,5 +72,11 @@ std::vector<std::pair<int, int>> ObjectsWithinDistance(const std::vector<std::ve
 // the regrouping all the same.
 std::vector<std::pair<int, int>> ObjectsStandingUnder(const std::vector<std::vector<Eigen::Vector3f>>& points_world,
                                                       double max_gap_m, double margin_m);
+
+// The points an object's size is measured on (size_check.wall_margin_m): those farther than
+// wall_margin_m from every detected wall plane (within its span), or all of them when that leaves
+// fewer than half (a door, a window or a curtain lies along its wall) or when wall_margin_m <= 0.
+std::vector<Eigen::Vector3f> PointsAwayFromWalls(const std::vector<Eigen::Vector3f>& points,
+                                                 const mapping::StructureResult& structure, double wall_margin_m);
 
 }  // namespace objscan::scanning

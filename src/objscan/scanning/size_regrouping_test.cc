@@ -1,7 +1,10 @@
 #include "objscan/scanning/size_regrouping.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
+#include "objscan/mapping/planes.h"
 #include "objscan/recognition/test_shapes.h"
 
 namespace objscan::scanning {
@@ -29,6 +32,8 @@ recognition::SizePlausibilityOptions Options() {
   recognition::SizePlausibilityOptions options;
   options.min_ratio = 0.8;
   options.max_ratio = 1.2;
+  // Whole point sets: a sparse piece below (eight corner points) would be trimmed away in a union.
+  options.extent_trim_fraction = 0.0;
   return options;
 }
 
@@ -280,6 +285,43 @@ TEST(JoinStackedPiecesTest, APieceThatTookAnotherHandsItOnWhenItJoins) {
   EXPECT_EQ(r.host, (std::vector<int>{2, 2, 2}));
   EXPECT_EQ(r.points_world[2].size(),
             objects[0].points_world.size() + objects[1].points_world.size() + objects[2].points_world.size());
+}
+
+TEST(PointsAwayFromWallsTest, StrayWallReturnsLeaveACabinetsExtentButADoorKeepsItsPoints) {
+  // A wall x = 0 facing +x, 5 m long. A cabinet stands against it (x 0.02-0.6 m, y 2-3 m, 0.9 m
+  // tall); a line of noisy wall returns 4 cm off the plane joined it, from one end of the wall to
+  // the other and up to 2.5 m.
+  mapping::StructureResult structure;
+  mapping::WallPlane wall;
+  wall.normal = Eigen::Vector3d::UnitX();
+  wall.offset_m = 0.0;
+  wall.span_min_m = 0.0;  // Along = y for this normal
+  wall.span_max_m = 5.0;
+  wall.z_min_m = 0.0;
+  wall.z_max_m = 2.5;
+  structure.walls.push_back(wall);
+  std::vector<Eigen::Vector3f> cabinet = Box({0.02, 2.0, 0.0}, {0.6, 3.0, 0.9});
+  const std::size_t n_cabinet = cabinet.size();
+  for (int i = 0; i <= 100; ++i) cabinet.emplace_back(0.04f, 0.05f * static_cast<float>(i), 0.025f * static_cast<float>(i));
+  const recognition::ObjectExtent whole = recognition::MeasureExtent(cabinet);
+  EXPECT_NEAR(whole.height_m, 2.5, 1e-5);
+  EXPECT_GT(whole.footprint_diagonal_m, 4.9);
+  const std::vector<Eigen::Vector3f> away = PointsAwayFromWalls(cabinet, structure, 0.08);
+  EXPECT_LT(away.size(), n_cabinet);  // the stray line and the cabinet's rear strip are left out
+  EXPECT_GT(2 * away.size(), cabinet.size());
+  for (const auto& p : away) EXPECT_GE(p.x(), 0.08f);
+  const recognition::ObjectExtent e = recognition::MeasureExtent(away);
+  EXPECT_NEAR(e.height_m, 0.9, 1e-5);
+  EXPECT_NEAR(e.footprint_diagonal_m, std::hypot(0.52, 1.0), 0.03);
+  // Beyond the wall's span, nothing is near it.
+  EXPECT_EQ(PointsAwayFromWalls(Box({0.0, 6.0, 0.0}, {0.5, 6.5, 0.5}), structure, 0.08).size(),
+            Box({0.0, 6.0, 0.0}, {0.5, 6.5, 0.5}).size());
+  // A door leaf in the wall's plane: nearly all its points are near the wall, so all stay.
+  const std::vector<Eigen::Vector3f> door = Box({-0.04, 1.0, 0.0}, {0.0, 1.9, 2.0});
+  EXPECT_EQ(PointsAwayFromWalls(door, structure, 0.08).size(), door.size());
+  // Off (margin 0) or no walls: all stay.
+  EXPECT_EQ(PointsAwayFromWalls(cabinet, structure, 0.0).size(), cabinet.size());
+  EXPECT_EQ(PointsAwayFromWalls(cabinet, mapping::StructureResult(), 0.08).size(), cabinet.size());
 }
 
 }  // namespace
