@@ -126,7 +126,7 @@ std::optional<segmentation::ModelMatch> RecognizerComponentMatcher::BestOfCatego
   std::optional<segmentation::ModelMatch> best;
   for (const DatabaseModel& model : db.models()) {
     if (model.category != category || model.full_entry < 0) continue;
-    const SimilarModel m = recognizer_.Match(*query, model.full_entry);
+    const SimilarModel m = recognizer_.Match(*query, model.full_entry, space_);
     if (!m.alignment.ok()) continue;
     segmentation::ModelMatch match = ToModelMatch(db, m);
     if (!best || match.objectness > best->objectness) best = match;

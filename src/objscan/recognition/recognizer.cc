@@ -122,11 +122,11 @@ std::vector<ScoredItem> Recognizer::Candidates(const QueryDescription& query, Re
   return database_.index(scope).Query(query.bow, count);
 }
 
-SimilarModel Recognizer::Match(const QueryDescription& query, int entry) const {
+SimilarModel Recognizer::Match(const QueryDescription& query, int entry, const SpaceEvidence* space) const {
   SimilarModel m;
   m.entry = entry;
   m.alignment = AlignToItem(query.keypoints, database_.keypoint_target(entry), options_.alignment);
-  if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), true, 0, nullptr, &m);
+  if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), true, 0, space, &m);
   return m;
 }
 
@@ -168,6 +168,8 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   const std::size_t n_model = model_points > 0 ? std::min<std::size_t>(model_points, model.size()) : model.size();
   std::vector<float> model_d2(n_model);
   const bool check_space = space != nullptr && options_.space_weight > 0.0;
+  const bool structure_explains = space != nullptr && options_.structure_completeness &&
+                                  e.keypoint_normals.size() == target.tree().points().size();
   std::vector<Eigen::Vector3f> placed;
   if (check_space) placed.resize(n_model);
   sum = 0.0;
@@ -176,6 +178,10 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
     const Eigen::Vector3f p = T_query_item * model[k];
     if (check_space) placed[k] = p;
     points_tree.Nearest(p, &d2);
+    if (structure_explains) {
+      const Eigen::Vector3f n = (T_query_item.linear() * e.keypoint_normals[k]).normalized();
+      d2 = std::min(d2, static_cast<float>(space->SquaredDistanceToStructure(p, n)));
+    }
     model_d2[k] = scale2 * d2;
     sum += model_d2[k];
   }

@@ -54,6 +54,14 @@ struct RecognitionOptions {
   // objectness, which sees only the query's points.
   double space_weight = 0.0;
   double space_tolerance = 0.1;  // v up to this costs nothing: database variants differ in detail
+  // Beyond the paper: in d(m, c) (completeness), an aligned entry keypoint resting against observed
+  // structure (on a face turned to the floor or a wall, at SpaceEvidence::SquaredDistanceToStructure;
+  // needs a SpaceEvidence and the entry's keypoint normals) counts as explained, as if the query held
+  // a point there. A wardrobe against a wall never shows its back panel, nor a dresser the bottom it
+  // stands on: without this, eq. (1) holds those panels against them and prefers models that have
+  // none (open-backed shelves). Faces turned into the room (a window's, in the wall plane) are not
+  // explained. false = the paper's eq. (1).
+  bool structure_completeness = false;
   AlignmentOptions alignment;
 
   template <class V>
@@ -72,6 +80,7 @@ struct RecognitionOptions {
     v("compose_unions", compose_unions);
     v("space_weight", space_weight);
     v("space_tolerance", space_tolerance);
+    v("structure_completeness", structure_completeness);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -131,8 +140,8 @@ class Recognizer {
   // Bag-of-words candidates only (no alignment), best first.
   std::vector<ScoredItem> Candidates(const QueryDescription& query, RetrievalScope scope, int count) const;
 
-  // Aligns the query to one entry and measures it (bow_score left 0).
-  SimilarModel Match(const QueryDescription& query, int entry) const;
+  // Aligns the query to one entry and measures it (bow_score left 0), with `space` as in Retrieve.
+  SimilarModel Match(const QueryDescription& query, int entry, const SpaceEvidence* space = nullptr) const;
 
   const ModelDatabase& database() const { return database_; }
   const RecognitionOptions& options() const { return options_; }

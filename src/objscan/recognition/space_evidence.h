@@ -4,6 +4,7 @@
 // fits the points it was aligned to: a refrigerator fitted to the face of a window puts its body in
 // the air in front of the window or outside the room. The recognizer asks for the share of a placed
 // model's keypoints that lie where no surface can be.
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,6 +19,14 @@ class SpaceEvidence {
   // beyond a wall, e.g. seen through a door, is not judged by that wall). 0 for no points.
   virtual double ImpossibleFraction(const std::vector<Eigen::Vector3f>& model_points_world,
                                     const Eigen::Vector3f& query_center_world) const = 0;
+  // The squared distance from p, on model surface with outward unit normal n, to the nearest surface
+  // of observed structure that can hide it (the floor; a wall plane, within its span and height,
+  // when the face turns to it); +inf when there is none. Model surface there is not seen apart from
+  // the structure (RecognitionOptions::structure_completeness).
+  virtual double SquaredDistanceToStructure(const Eigen::Vector3f& /*p_world*/,
+                                            const Eigen::Vector3f& /*n_world*/) const {
+    return std::numeric_limits<double>::infinity();
+  }
 };
 
 }  // namespace objscan::recognition

@@ -1,5 +1,9 @@
 #include "objscan/scanning/map_space_evidence.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace objscan::scanning {
 
 MapSpaceEvidence::MapSpaceEvidence(const mapping::OccupancySnapshot& snapshot,
@@ -48,6 +52,25 @@ double MapSpaceEvidence::ImpossibleFraction(const std::vector<Eigen::Vector3f>& 
   std::size_t n = 0;
   for (const auto& p : model_points_world) n += Impossible(p, query_center_world) ? 1 : 0;
   return static_cast<double>(n) / static_cast<double>(model_points_world.size());
+}
+
+double MapSpaceEvidence::SquaredDistanceToStructure(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
+  double best = std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d pd = p.cast<double>(), nd = n.cast<double>();
+  const double c = options_.facing_min_cos;
+  // Any face this near the floor lies in the band the floor's tags take (presegmentation.floor_prior),
+  // where no object surface is kept. A wall's normal points into the room: a face resting against it
+  // points the opposite way (faces turned to the room, as a window's in the wall plane, are seen).
+  if (structure_.has_floor && options_.floor_is_structure) {
+    best = std::pow(pd.z() - structure_.floor_height_m, 2);
+  }
+  for (const mapping::WallPlane& w : structure_.walls) {
+    if (c > -1.0 && -nd.dot(w.normal) < c) continue;  // -1: any face
+    const double along = w.Along(pd);
+    if (along < w.span_min_m || along > w.span_max_m || pd.z() < w.z_min_m || pd.z() > w.z_max_m) continue;
+    best = std::min(best, std::pow(w.SignedDistance(pd), 2));
+  }
+  return best;
 }
 
 }  // namespace objscan::scanning

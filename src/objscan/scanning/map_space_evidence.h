@@ -20,16 +20,24 @@ struct MapSpaceEvidenceOptions {
   // A point this far behind a wall plane (within the wall's span) is impossible when the query is
   // on the room side of that wall; door and window reveals lie within it.
   double behind_wall_m = 0.3;
+  // Whether the floor counts as structure in SquaredDistanceToStructure (walls always do).
+  bool floor_is_structure = true;
+  // A face rests against a wall when its normal and the wall's point against each other by at least
+  // this cosine (SquaredDistanceToStructure; any face counts for the floor); -1 = any face.
+  double facing_min_cos = 0.5;
 
   template <class V>
   void Visit(V& v) {
     v("erode_free", erode_free);
     v("below_floor_m", below_floor_m);
     v("behind_wall_m", behind_wall_m);
+    v("floor_is_structure", floor_is_structure);
+    v("facing_min_cos", facing_min_cos);
   }
   void Validate() const {
     config::RequireNonNegative("scanner.space.below_floor_m", below_floor_m);
     config::RequireNonNegative("scanner.space.behind_wall_m", behind_wall_m);
+    config::RequireInRange("scanner.space.facing_min_cos", facing_min_cos, -1.0, 1.0);
   }
 };
 
@@ -40,6 +48,8 @@ class MapSpaceEvidence : public recognition::SpaceEvidence {
 
   double ImpossibleFraction(const std::vector<Eigen::Vector3f>& model_points_world,
                             const Eigen::Vector3f& query_center_world) const override;
+
+  double SquaredDistanceToStructure(const Eigen::Vector3f& p_world, const Eigen::Vector3f& n_world) const override;
 
   // Whether one point is impossible for a query centred at `query_center_world`.
   bool Impossible(const Eigen::Vector3f& p_world, const Eigen::Vector3f& query_center_world) const;

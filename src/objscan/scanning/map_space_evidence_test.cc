@@ -1,5 +1,7 @@
 #include "objscan/scanning/map_space_evidence.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "objscan/common/error.h"
@@ -66,6 +68,29 @@ TEST(MapSpaceEvidence, WithoutErosionEveryFreeVoxelIsImpossibleAndFractionsCount
   EXPECT_TRUE(e.Impossible(Voxel(7, 5, 5), inside));
   EXPECT_DOUBLE_EQ(e.ImpossibleFraction({Voxel(4, 5, 5), Voxel(5, 5, 5), Voxel(8, 5, 5), Voxel(2, 2, 2)}, inside), 0.5);
   EXPECT_DOUBLE_EQ(e.ImpossibleFraction({}, inside), 0.0);
+}
+
+TEST(MapSpaceEvidence, DistanceToStructureIsToTheFloorOrAWallAFaceRestsAgainst) {
+  const MapSpaceEvidence e = Evidence();
+  // Floor z = 0; wall x = 0.9 facing -x, over y in [0, 1] and z in [0, 1]. Any face counts for the
+  // floor; for the wall, faces turned to it (+x).
+  const Eigen::Vector3f down(0, 0, -1), to_wall(1, 0, 0), to_room(-1, 0, 0);
+  const Eigen::Vector3f both = Eigen::Vector3f(1, 0, -1).normalized();
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.2f, 0.5f, 0.3f}, down), 0.09, 1e-6);
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.2f, 0.5f, 0.3f}, to_room), 0.09, 1e-6);  // any face: floor
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_wall), 0.0025, 1e-6);  // in front
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.95f, 0.5f, 0.5f}, to_wall), 0.0025, 1e-6);  // behind
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_room), 0.25, 1e-6);  // a face to the room: floor only
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 1.5f, 0.5f}, to_wall), 0.25, 1e-6);  // beside its span
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 1.4f}, to_wall), 1.96, 1e-5);  // above it
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, both), 0.0025, 1e-6);     // the nearer of two
+  MapSpaceEvidenceOptions no_floor;
+  no_floor.floor_is_structure = false;
+  EXPECT_TRUE(std::isinf(Evidence(no_floor).SquaredDistanceToStructure({0.2f, 0.5f, 0.3f}, down)));
+  EXPECT_NEAR(Evidence(no_floor).SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_wall), 0.0025, 1e-6);
+  const MapSpaceEvidence none(mapping::OccupancySnapshot(), mapping::StructureResult(), {});
+  EXPECT_TRUE(std::isinf(none.SquaredDistanceToStructure({0.2f, 0.5f, 0.3f}, down)));
+  EXPECT_EQ(none.ImpossibleFraction({Voxel(2, 2, 2)}, Eigen::Vector3f(0.3f, 0.5f, 0.5f)), 0.0);  // nothing known
 }
 
 TEST(MapSpaceEvidence, RejectsNegativeMargins) {

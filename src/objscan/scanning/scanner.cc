@@ -334,9 +334,12 @@ struct Scanner::State {
     Charge(step, "segment", w.ElapsedMs());
     w.Restart();
     matcher.SetComponents(&graph);
-    if (config.recognition.space_weight > 0.0) {
-      space_evidence = std::make_unique<MapSpaceEvidence>(occupancy.Snapshot(occupancy.KnownBounds()), structure,
-                                                          config.scanner.space);
+    if (config.recognition.space_weight > 0.0 || config.recognition.structure_completeness) {
+      // Structure alone needs no occupancy snapshot (an empty one holds no free space).
+      space_evidence = std::make_unique<MapSpaceEvidence>(
+          config.recognition.space_weight > 0.0 ? occupancy.Snapshot(occupancy.KnownBounds())
+                                                : mapping::OccupancySnapshot(),
+          structure, config.scanner.space);
       matcher.SetSpaceEvidence(space_evidence.get());
     }
     segmentation::PostSegmenterInput input;
