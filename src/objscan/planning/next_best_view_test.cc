@@ -170,14 +170,19 @@ TEST(NextBestViewTest, PrefersTheViewRevealingWhereModelsDisagree) {
   EXPECT_EQ(r4.candidates[2].gain.gain, 0.0);
 }
 
+// Four candidates on one ring at 15 degrees: +X, +Y, -X, -Y of the target.
+NextBestViewOptions FourOnOneRing() {
+  NextBestViewOptions four;
+  four.candidates.num_candidates = 4;
+  four.candidates.ring_elevations_deg = {15.0};
+  return four;
+}
+
 TEST(NextBestViewTest, UnobservedSurfaceCountsTheUnseenVoxelsOfOneModel) {
   // One model, the plain cube, seen only on its -X half: no uncertainty, so no information gain, but
   // the unseen +X half is there to be scanned. Four candidates on one ring: +X, +Y, -X, -Y.
   const DisagreeOnPlusX s;
-  NextBestViewOptions four;
-  four.candidates.num_candidates = 4;
-  four.candidates.ring_elevations_deg = {15.0};
-  NextBestView nbv(four);
+  NextBestView nbv(FourOnOneRing());
   NextBestViewInput in = s.Input();
   in.models = {ModelHypothesis{2, 0.9, &s.model_b}};
   NextBestViewResult r = nbv.Plan(in, nullptr);
@@ -219,10 +224,7 @@ TEST(NextBestViewTest, AimPointsAddCandidatesLookingAtThem) {
   // The plain cube seen on its -X half; aiming at the unseen +X half adds a second ring set of
   // candidates, each looking at that half's centre and validated against it.
   const DisagreeOnPlusX s;
-  NextBestViewOptions four;
-  four.candidates.num_candidates = 4;
-  four.candidates.ring_elevations_deg = {15.0};
-  NextBestView nbv(four);
+  NextBestView nbv(FourOnOneRing());
   NextBestViewInput in = s.Input();
   in.models = {ModelHypothesis{2, 1.0, &s.model_b}};
   in.gain_measure = ViewGainMeasure::kUnobservedSurface;
