@@ -80,7 +80,8 @@ TEST(MapSpaceEvidence, DistanceToStructureIsToTheFloorOrAWallAFaceRestsAgainst) 
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.2f, 0.5f, 0.3f}, to_room), 0.09, 1e-6);  // any face: floor
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_wall), 0.0025, 1e-6);  // in front
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.95f, 0.5f, 0.5f}, to_wall), 0.0025, 1e-6);  // behind
-  EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_room), 0.25, 1e-6);  // a face to the room: floor only
+  // A face turned to the room: only the floor counts.
+  EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_room), 0.25, 1e-6);
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 1.5f, 0.5f}, to_wall), 0.25, 1e-6);  // beside its span
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 1.4f}, to_wall), 1.96, 1e-5);  // above it
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, both), 0.0025, 1e-6);     // the nearer of two

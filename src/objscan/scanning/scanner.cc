@@ -1153,8 +1153,9 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   for (std::size_t i = 0; i < host.size(); ++i) {
     if (host[i] != static_cast<int>(i)) continue;
     ObjectRecord& o = rec.objects[i];
-    extents[i] = recognition::MeasureExtent(PointsAwayFromWalls(object_points[i], s.structure, size_check.wall_margin_m), 16,
-                                            size_check.extent_trim_fraction);
+    const std::vector<Eigen::Vector3f> measured =
+        PointsAwayFromWalls(object_points[i], s.structure, size_check.wall_margin_m);
+    extents[i] = recognition::MeasureExtent(measured, 16, size_check.extent_trim_fraction);
     o.height_m = extents[i].height_m;
     o.footprint_diagonal_m = extents[i].footprint_diagonal_m;
     if (full_matches[i] == nullptr) continue;

@@ -302,7 +302,9 @@ TEST(PointsAwayFromWallsTest, StrayWallReturnsLeaveACabinetsExtentButADoorKeepsI
   structure.walls.push_back(wall);
   std::vector<Eigen::Vector3f> cabinet = Box({0.02, 2.0, 0.0}, {0.6, 3.0, 0.9});
   const std::size_t n_cabinet = cabinet.size();
-  for (int i = 0; i <= 100; ++i) cabinet.emplace_back(0.04f, 0.05f * static_cast<float>(i), 0.025f * static_cast<float>(i));
+  for (int i = 0; i <= 100; ++i) {
+    cabinet.emplace_back(0.04f, 0.05f * static_cast<float>(i), 0.025f * static_cast<float>(i));
+  }
   const recognition::ObjectExtent whole = recognition::MeasureExtent(cabinet);
   EXPECT_NEAR(whole.height_m, 2.5, 1e-5);
   EXPECT_GT(whole.footprint_diagonal_m, 4.9);
