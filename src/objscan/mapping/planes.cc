@@ -68,10 +68,7 @@ int StructureResult::WallOpeningIndex(const Eigen::Vector3d& p, double min_depth
     const WallPlane& w = walls[i];
     const double depth = -w.SignedDistance(p);
     if (depth <= min_depth_m || depth > max_depth_m) continue;
-    const double s = w.Along(p);
-    if (s >= w.span_min_m && s <= w.span_max_m && p.z() >= w.z_min_m && p.z() <= w.z_max_m) {
-      return static_cast<int>(i);
-    }
+    if (w.Spans(p)) return static_cast<int>(i);
   }
   return -1;
 }

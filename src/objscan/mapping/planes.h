@@ -63,6 +63,11 @@ struct WallPlane {
   double SignedDistance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset_m; }
   // Position of p along the wall direction t = (-n.y, n.x, 0) (compare with the span).
   double Along(const Eigen::Vector3d& p) const { return -normal.y() * p.x() + normal.x() * p.y(); }
+  // Whether p lies within the wall's span and height (at any distance from its plane).
+  bool Spans(const Eigen::Vector3d& p) const {
+    const double s = Along(p);
+    return s >= span_min_m && s <= span_max_m && p.z() >= z_min_m && p.z() <= z_max_m;
+  }
   // The point of the plane at z = 0 whose position along the wall is along_m (Along's inverse).
   Eigen::Vector3d PointAt(double along_m) const {
     return offset_m * normal + along_m * Eigen::Vector3d(-normal.y(), normal.x(), 0.0);

@@ -337,17 +337,29 @@ std::vector<int> StyleIndices(world::Category category, int variants, std::uint6
   return out;
 }
 
+// The pool indices (offsets from first_index) of a category's sample.
+std::vector<int> SampledIndices(world::Category category, int variants, std::uint64_t first_index,
+                                ProceduralSampling sampling) {
+  switch (sampling) {
+    case ProceduralSampling::kSpread:
+      return SpreadIndices(category, variants, first_index);
+    case ProceduralSampling::kStyles:
+      return StyleIndices(category, variants, first_index);
+    case ProceduralSampling::kFirstSeeds:
+      break;
+  }
+  std::vector<int> first(static_cast<std::size_t>(std::max(0, variants)));
+  std::iota(first.begin(), first.end(), 0);
+  return first;
+}
+
 }  // namespace
 
 std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index,
                                                 ProceduralSampling sampling) {
   std::vector<ModelSource> sources;
   for (world::Category category : world::procedural::FurnitureCategories()) {
-    std::vector<int> indices(static_cast<std::size_t>(std::max(0, variants)));
-    std::iota(indices.begin(), indices.end(), 0);
-    if (sampling == ProceduralSampling::kSpread) indices = SpreadIndices(category, variants, first_index);
-    if (sampling == ProceduralSampling::kStyles) indices = StyleIndices(category, variants, first_index);
-    for (int k : indices) {
+    for (int k : SampledIndices(category, variants, first_index, sampling)) {
       const std::uint64_t seed = world::procedural::DatabaseModelSeed(first_index + k);
       ModelSource s;
       s.category = category;

@@ -54,13 +54,13 @@ struct RecognitionOptions {
   // objectness, which sees only the query's points.
   double space_weight = 0.0;
   double space_tolerance = 0.1;  // v up to this costs nothing: database variants differ in detail
-  // Beyond the paper: in d(m, c) (completeness), an aligned entry keypoint resting against observed
-  // structure (on a face turned to the floor or a wall, at SpaceEvidence::SquaredDistanceToStructure;
-  // needs a SpaceEvidence and the entry's keypoint normals) counts as explained, as if the query held
-  // a point there. A wardrobe against a wall never shows its back panel, nor a dresser the bottom it
-  // stands on: without this, eq. (1) holds those panels against them and prefers models that have
-  // none (open-backed shelves). Faces turned into the room (a window's, in the wall plane) are not
-  // explained. false = the paper's eq. (1).
+  // Beyond the paper: in d(m, c) (completeness), an aligned entry keypoint's squared distance is the
+  // smaller of that to the query and that to observed structure which can hide it
+  // (SpaceEvidence::SquaredDistanceToStructure: the floor for any face, a wall for faces turned to it
+  // as scanner.space.facing_min_cos says; needs a SpaceEvidence and the entry's keypoint normals). A
+  // wardrobe against a wall never shows its back panel, nor any face its bottom few centimetres:
+  // without this, eq. (1) holds those against a model and prefers models without them (open-backed
+  // shelves). false = the paper's eq. (1).
   bool structure_completeness = false;
   AlignmentOptions alignment;
 

@@ -40,8 +40,7 @@ bool MapSpaceEvidence::Impossible(const Eigen::Vector3f& p, const Eigen::Vector3
     if (w.SignedDistance(pd) >= -options_.behind_wall_m) continue;
     // The query itself beyond this wall (seen through a door): the wall says nothing about it.
     if (w.SignedDistance(cd) < -options_.behind_wall_m) continue;
-    const double along = w.Along(pd);
-    if (along >= w.span_min_m && along <= w.span_max_m && pd.z() >= w.z_min_m && pd.z() <= w.z_max_m) return true;
+    if (w.Spans(pd)) return true;
   }
   return false;
 }
@@ -66,9 +65,7 @@ double MapSpaceEvidence::SquaredDistanceToStructure(const Eigen::Vector3f& p, co
   }
   for (const mapping::WallPlane& w : structure_.walls) {
     if (c > -1.0 && -nd.dot(w.normal) < c) continue;  // -1: any face
-    const double along = w.Along(pd);
-    if (along < w.span_min_m || along > w.span_max_m || pd.z() < w.z_min_m || pd.z() > w.z_max_m) continue;
-    best = std::min(best, std::pow(w.SignedDistance(pd), 2));
+    if (w.Spans(pd)) best = std::min(best, std::pow(w.SignedDistance(pd), 2));
   }
   return best;
 }
