@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <unordered_map>
 #include <unordered_set>
@@ -22,6 +23,7 @@ void IncrementalSegmenterOptions::Validate() const {
   config::RequireInRange("adjacency_cell_voxels", adjacency_cell_voxels, 1, 8);
   config::RequirePositive("floor_prior_tolerance_m", floor_prior_tolerance_m);
   config::RequireInRange("floor_prior_max_tilt_deg", floor_prior_max_tilt_deg, 0.0, 90.0);
+  slot_split.Validate();
 }
 
 IncrementalSegmenter::IncrementalSegmenter(const IncrementalSegmenterOptions& options) : options_(options) {
@@ -133,7 +135,7 @@ SegmenterUpdateStats IncrementalSegmenter::Update(const sim::DepthFrame& frame,
         const auto key = std::make_pair(std::min(o[0].label, o[k].label), std::max(o[0].label, o[k].label));
         if (++merge_evidence_[key] < options_.merge_min_frames) continue;
         const std::int32_t ra = FindRoot(o[0].label), rb = FindRoot(o[k].label);
-        if (ra == rb) continue;
+        if (ra == rb || SplitApart(ra, rb)) continue;
         parent_[std::max(ra, rb)] = std::min(ra, rb);
         merged.push_back(std::max(ra, rb));
         ++stats.merges;
@@ -161,6 +163,8 @@ SegmenterUpdateStats IncrementalSegmenter::Update(const sim::DepthFrame& frame,
     const std::int32_t s = seg.segment[i];
     const std::int32_t e = association.pixel_element[i];
     if (s < 0 || e < 0) continue;
+    // A segment spanning a slot cut does not pull the other piece's elements back.
+    if (SplitApart(segment_label[s], map->label(static_cast<std::size_t>(e)))) continue;
     map->VoteLabel(static_cast<std::size_t>(e), segment_label[s], weight);
   }
   return stats;
@@ -179,6 +183,51 @@ std::uint64_t PackCell(std::int32_t x, std::int32_t y, std::int32_t z) {
 }  // namespace
 
 const ComponentGraph& IncrementalSegmenter::Components(mapping::SurfaceMap* map) {
+  BuildComponents(map);
+  // A cut relabels elements or parts neighbours: rebuild and look again (the pieces of a cut may
+  // lie apart from their other neighbours), reporting the labels any pass changed.
+  for (int pass = 0; pass < 3 && options_.slot_split.enabled && CutAtSlots(map); ++pass) {
+    std::vector<std::int32_t> before = std::move(changed_labels_);
+    BuildComponents(map);
+    std::vector<std::int32_t> all;
+    std::set_union(before.begin(), before.end(), changed_labels_.begin(), changed_labels_.end(),
+                   std::back_inserter(all));
+    changed_labels_ = std::move(all);
+  }
+  return graph_;
+}
+
+bool IncrementalSegmenter::CutAtSlots(mapping::SurfaceMap* map) {
+  const SlotSplitOptions& o = options_.slot_split;
+  const double element_area = map->voxel_size_m() * map->voxel_size_m();
+  // Changed components holding a slot, and the first slot of each.
+  std::map<std::int32_t, Slot> cut;
+  for (std::int32_t label : changed_labels_) {
+    const Component* c = graph_.Find(label);
+    if (c == nullptr || static_cast<double>(c->points.size()) * element_area < 2.0 * o.min_part_area_m2) continue;
+    const std::vector<Slot> slots = FindSlots(c->points, c->normals, element_area, o);
+    if (!slots.empty()) cut.emplace(label, slots.front());
+  }
+  if (cut.empty()) return false;
+  // The part after the slot takes a new label, apart from the part before for good.
+  std::map<std::int32_t, std::int32_t> new_label;
+  for (const auto& [label, slot] : cut) {
+    const std::int32_t after = next_label_++;
+    parent_.push_back(after);
+    new_label[label] = after;
+    split_pairs_.insert({label, after});
+  }
+  for (std::size_t i = 0; i < map->size(); ++i) {
+    const std::int32_t l = map->label(i);
+    if (l <= 0 || map->structure(i) != mapping::Structure::kNone) continue;
+    auto it = cut.find(l);
+    if (it == cut.end() || it->second.Before(map->position(i))) continue;
+    map->SetLabel(i, new_label[l], map->label_confidence(i));
+  }
+  return true;
+}
+
+void IncrementalSegmenter::BuildComponents(mapping::SurfaceMap* map) {
   changed_labels_ = map->TakeDirtyLabels();
   std::int32_t max_label = 0;
   for (std::size_t i = 0; i < map->size(); ++i) max_label = std::max(max_label, map->label(i));
@@ -329,11 +378,12 @@ const ComponentGraph& IncrementalSegmenter::Components(mapping::SurfaceMap* map)
   for (std::size_t i = 0; i < components.size(); ++i) index_of[components[i].label] = i;
   for (std::uint64_t e : edges) {
     const std::int32_t a = static_cast<std::int32_t>(e >> 32), b = static_cast<std::int32_t>(e & 0xFFFFFFFFu);
+    // Pieces cut apart at a slot are not neighbours: no grouping joins them again.
+    if (SplitApart(a, b)) continue;
     neighbors[index_of[a]].push_back(b);
     neighbors[index_of[b]].push_back(a);
   }
   graph_.Assign(std::move(components), std::move(neighbors));
-  return graph_;
 }
 
 }  // namespace objscan::segmentation

@@ -11,6 +11,7 @@
 // recomputing only labels that changed.
 #include <cstdint>
 #include <map>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/component_graph.h"
 #include "objscan/segmentation/frame_segmenter.h"
+#include "objscan/segmentation/slot_split.h"
 
 namespace objscan::segmentation {
 
@@ -53,6 +55,10 @@ struct IncrementalSegmenterOptions {
   double floor_prior_height_m = 0.0;
   double floor_prior_tolerance_m = 0.03;
   double floor_prior_max_tilt_deg = 20.0;
+  // Beyond the paper: a component is cut at narrow slots between pieces standing side by side
+  // (slot_split.h). The pieces get labels of their own that never merge again, and frame segments
+  // spanning both do not vote across the cut.
+  SlotSplitOptions slot_split;
 
   template <class V>
   void Visit(V& v) {
@@ -70,6 +76,7 @@ struct IncrementalSegmenterOptions {
     v("floor_prior_height_m", floor_prior_height_m);
     v("floor_prior_tolerance_m", floor_prior_tolerance_m);
     v("floor_prior_max_tilt_deg", floor_prior_max_tilt_deg);
+    v("slot_split", slot_split);
   }
   void Validate() const;
 };
@@ -102,6 +109,14 @@ class IncrementalSegmenter {
 
  private:
   std::int32_t FindRoot(std::int32_t label);
+  // Components() without the slot cut.
+  void BuildComponents(mapping::SurfaceMap* map);
+  // Cuts every changed component holding a slot (slot_split.h) at its first one: the part after it
+  // takes a new label. Returns whether any label changed.
+  bool CutAtSlots(mapping::SurfaceMap* map);
+  bool SplitApart(std::int32_t a, std::int32_t b) const {
+    return !split_pairs_.empty() && split_pairs_.count({std::min(a, b), std::max(a, b)}) > 0;
+  }
   // Fills pixel_class_ (floor / wall / object) for the frame's valid pixels.
   void ClassifyPixels(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
                       const mapping::SurfaceMap& map);
@@ -110,6 +125,7 @@ class IncrementalSegmenter {
   std::int32_t next_label_ = 1;
   std::vector<std::int32_t> parent_;  // union-find over labels (index = label)
   std::map<std::pair<std::int32_t, std::int32_t>, int> merge_evidence_;  // frames seen overlapping
+  std::set<std::pair<std::int32_t, std::int32_t>> split_pairs_;  // labels cut apart at a slot
   FrameSegmentation frame_segmentation_;
   std::vector<std::uint8_t> pixel_class_;  // scratch: 0 = object, 1 = floor, 2 = wall
 
