@@ -11,6 +11,7 @@ void SlotSplitOptions::Validate() const {
   config::RequireInRange("max_gap_m", max_gap_m, min_gap_m, 1.0);
   config::RequirePositive("min_sheet_area_m2", min_sheet_area_m2);
   config::RequireNonNegative("min_part_area_m2", min_part_area_m2);
+  config::RequireInRange("min_sheet_overlap", min_sheet_overlap, 0.0, 1.0);
   config::RequireInRange("sheet_min_cos", sheet_min_cos, 0.0, 1.0);
   config::RequireInRange("bin_m", bin_m, 0.001, 0.1);
 }
@@ -41,6 +42,31 @@ double DominantYaw(const std::vector<Eigen::Vector3f>& normals) {
     }
   }
   return (best + 0.5) * (0.5 * M_PI) / kBins;
+}
+
+struct Range {
+  double lo = 0.0, hi = 0.0;
+};
+
+// The 5% and 95% quantiles of `values` (reordered).
+Range QuantileRange(std::vector<float>* values) {
+  Range r;
+  if (values->empty()) return r;
+  const std::size_t n = values->size();
+  const std::size_t lo = n / 20, hi = n - 1 - n / 20;
+  std::nth_element(values->begin(), values->begin() + lo, values->end());
+  r.lo = (*values)[lo];
+  std::nth_element(values->begin(), values->begin() + hi, values->end());
+  r.hi = (*values)[hi];
+  return r;
+}
+
+// Share of the smaller range that the other covers (1 for two points at one place).
+double Overlap(const Range& a, const Range& b) {
+  const double shorter = std::min(a.hi - a.lo, b.hi - b.lo);
+  const double common = std::min(a.hi, b.hi) - std::max(a.lo, b.lo);
+  if (shorter <= 0.0) return common >= 0.0 ? 1.0 : 0.0;
+  return std::clamp(common / shorter, 0.0, 1.0);
 }
 
 void SlotsAlong(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
@@ -83,6 +109,22 @@ void SlotsAlong(const std::vector<Eigen::Vector3f>& points, const std::vector<Ei
       if (window(facing_minus, q) >= o.min_sheet_area_m2) break;
     }
     if (q > std::min(nb - 1, b + gap_hi)) continue;
+    // Each sheet's extent across and in height (5% to 95% quantiles).
+    std::vector<float> u_plus, z_plus, u_minus, z_minus;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const int bi = bin_of[i];
+      const float d = normals[i].dot(axis);
+      if ((bi == b || bi == b + 1) && d >= c) {
+        u_plus.push_back(points[i].dot(across));
+        z_plus.push_back(points[i].z());
+      } else if ((bi == q || bi == q + 1) && d <= -c) {
+        u_minus.push_back(points[i].dot(across));
+        z_minus.push_back(points[i].z());
+      }
+    }
+    const Range up = QuantileRange(&u_plus), zp = QuantileRange(&z_plus);
+    const Range um = QuantileRange(&u_minus), zm = QuantileRange(&z_minus);
+    if (Overlap(up, um) < o.min_sheet_overlap || Overlap(zp, zm) < o.min_sheet_overlap) continue;
     const int cut_bin = (b + q + 2) / 2;  // between the two sheets' centres
     const double before = below[std::min(cut_bin, nb)];
     if (before - last_cut_area >= o.min_part_area_m2 && total - before >= o.min_part_area_m2) {
@@ -90,20 +132,10 @@ void SlotsAlong(const std::vector<Eigen::Vector3f>& points, const std::vector<Ei
       s.axis = axis;
       s.across = across;
       s.offset_m = t_min + bin * cut_bin;
-      s.across_min_m = s.z_min_m = std::numeric_limits<double>::max();
-      s.across_max_m = s.z_max_m = std::numeric_limits<double>::lowest();
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        const int bi = bin_of[i];
-        const float d = normals[i].dot(axis);
-        const bool in_plus = (bi == b || bi == b + 1) && d >= c;
-        const bool in_minus = (bi == q || bi == q + 1) && d <= -c;
-        if (!in_plus && !in_minus) continue;
-        const double u = points[i].dot(across);
-        s.across_min_m = std::min(s.across_min_m, u);
-        s.across_max_m = std::max(s.across_max_m, u);
-        s.z_min_m = std::min(s.z_min_m, static_cast<double>(points[i].z()));
-        s.z_max_m = std::max(s.z_max_m, static_cast<double>(points[i].z()));
-      }
+      s.across_min_m = std::min(up.lo, um.lo);
+      s.across_max_m = std::max(up.hi, um.hi);
+      s.z_min_m = std::min(zp.lo, zm.lo);
+      s.z_max_m = std::max(zp.hi, zm.hi);
       slots->push_back(s);
       last_cut_area = before;
     }

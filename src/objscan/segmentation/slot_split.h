@@ -24,6 +24,10 @@ struct SlotSplitOptions {
   double min_sheet_area_m2 = 0.015;
   // Each side of a cut: at least this much surface.
   double min_part_area_m2 = 0.1;
+  // The two sheets face each other over most of their extent: the overlap of their height ranges
+  // (and of their ranges across) is at least this share of the smaller one's. A chair's seat and
+  // backrest a few centimetres apart show a low sheet (the seat's back edge) before a tall one.
+  double min_sheet_overlap = 0.6;
   // A side-face element's normal is within this cosine of the axis.
   double sheet_min_cos = 0.9;
   double bin_m = 0.01;
@@ -35,15 +39,16 @@ struct SlotSplitOptions {
     v("max_gap_m", max_gap_m);
     v("min_sheet_area_m2", min_sheet_area_m2);
     v("min_part_area_m2", min_part_area_m2);
+    v("min_sheet_overlap", min_sheet_overlap);
     v("sheet_min_cos", sheet_min_cos);
     v("bin_m", bin_m);
   }
   void Validate() const;
 };
 
-// A vertical cut plane through a slot: points p with p.dot(axis) < offset_m lie before it. It holds
-// only across the sheets' extent: `across` is the horizontal axis in the plane, and the sheets'
-// elements span [across_min_m, across_max_m] along it and [z_min_m, z_max_m] in height.
+// A vertical cut plane through a slot: points p with p.dot(axis) < offset_m lie before it.
+// `across` is the horizontal axis in the plane; the sheets' elements span [across_min_m,
+// across_max_m] along it and [z_min_m, z_max_m] in height (between their 5% and 95% quantiles).
 struct Slot {
   Eigen::Vector3f axis = Eigen::Vector3f::UnitX();
   Eigen::Vector3f across = Eigen::Vector3f::UnitY();
