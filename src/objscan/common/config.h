@@ -123,12 +123,64 @@ class DumpVisitor {
   std::string prefix_;
 };
 
+template <class T, class = void>
+struct HasValidate : std::false_type {};
+template <class T>
+struct HasValidate<T, std::void_t<decltype(std::declval<const T&>().Validate())>> : std::true_type {};
+
+// Validates nested sections depth first, so that an error names the field by its whole key
+// ("config: presegmentation.slot_split.min_gap_m must be > 0"), not by its name in its struct.
+class ValidateVisitor {
+ public:
+  explicit ValidateVisitor(std::string prefix) : prefix_(std::move(prefix)) {}
+  template <class T>
+  void operator()(const char* name, T& field) {
+    if constexpr (IsSection<T>::value) {
+      const std::string key = prefix_ + name + ".";
+      ValidateVisitor sub(key);
+      field.Visit(sub);
+      if constexpr (HasValidate<T>::value) {
+        try {
+          field.Validate();
+        } catch (const ConfigError& e) {
+          throw ConfigError(QualifiedMessage(e.what(), key));
+        }
+      }
+    }
+  }
+
+ private:
+  // "config: <field> ..." -> "config: <key><field> ...". A field some Validate() already wrote as a
+  // dotted path keeps it, completed in front when it starts with the end of `key`
+  // ("size_check.min_ratio" under "scanner.size_check." -> "scanner.size_check.min_ratio").
+  static std::string QualifiedMessage(const std::string& message, const std::string& key) {
+    const std::string tag = "config: ";
+    if (message.compare(0, tag.size(), tag) != 0) return tag + key + ": " + message;
+    const std::string rest = message.substr(tag.size());
+    const std::string field = rest.substr(0, rest.find(' '));
+    if (field.find('.') == std::string::npos) return tag + key + rest;
+    // The longest tail of `key` (whole components) the field starts with.
+    std::size_t start = 0;
+    while (start < key.size()) {
+      const std::string tail = key.substr(start);
+      if (field.compare(0, tail.size(), tail) == 0) return tag + key.substr(0, start) + rest;
+      const std::size_t dot = key.find('.', start);
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    return message;
+  }
+  std::string prefix_;
+};
+
 // Applies `raw` onto `options` (a section struct), rejects unknown keys, then validates.
 template <class Options>
 void Apply(RawConfig raw, Options* options) {
   ApplyVisitor visitor(&raw, "");
   options->Visit(visitor);
   raw.CheckAllUsed();
+  ValidateVisitor validate("");
+  options->Visit(validate);
   options->Validate();
 }
 

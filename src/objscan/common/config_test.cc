@@ -72,6 +72,66 @@ TEST(ConfigTest, RejectsBadValuesAndInvalidRanges) {
   EXPECT_THROW(RawConfig::FromYamlString("a: [1, 2\n", "broken.yaml"), InputError);
 }
 
+struct Leaf {
+  double gap_m = 0.1;
+  double step_m = 0.1;
+  template <class V>
+  void Visit(V& v) {
+    v("gap_m", gap_m);
+    v("step_m", step_m);
+  }
+  void Validate() const {
+    RequirePositive("gap_m", gap_m);
+    RequirePositive("leaf.step_m", step_m);  // written with its section, as some Validate()s do
+  }
+};
+
+struct Middle {
+  Leaf leaf;
+  template <class V>
+  void Visit(V& v) {
+    v("leaf", leaf);
+  }
+  void Validate() const { leaf.Validate(); }
+};
+
+struct Top {
+  Middle middle;
+  Inner inner;
+  template <class V>
+  void Visit(V& v) {
+    v("middle", middle);
+    v("inner", inner);
+  }
+  void Validate() const {
+    middle.Validate();
+    inner.Validate();
+  }
+};
+
+std::string ApplyError(const std::string& assignment) {
+  RawConfig raw;
+  raw.SetFromAssignment(assignment);
+  Top top;
+  try {
+    Apply(raw, &top);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ConfigTest, InvalidValueErrorsNameTheWholeKey) {
+  EXPECT_EQ(ApplyError("middle.leaf.gap_m=-1").rfind("config: middle.leaf.gap_m must be > 0", 0), 0u)
+      << ApplyError("middle.leaf.gap_m=-1");
+  EXPECT_EQ(ApplyError("middle.leaf.step_m=0").rfind("config: middle.leaf.step_m must be > 0", 0), 0u)
+      << ApplyError("middle.leaf.step_m=0");
+  // Already the whole key: unchanged.
+  EXPECT_EQ(ApplyError("inner.size_m=-2").rfind("config: inner.size_m must be > 0", 0), 0u)
+      << ApplyError("inner.size_m=-2");
+  EXPECT_EQ(ApplyError("middle.leaf.gap_m=0.5"), "");
+}
+
 TEST(ConfigTest, DumpRoundTripsThroughYaml) {
   Outer a;
   a.count = 11;
