@@ -42,6 +42,14 @@ SlotSplitOptions Enabled() {
   return o;
 }
 
+// Slots found between two 0.6 m boxes `gap_m` apart, their side faces seen `side_depth_m` deep.
+std::size_t SlotsBetweenTwoBoxes(double gap_m, double side_depth_m, const SlotSplitOptions& options = Enabled()) {
+  Surface s;
+  s.Box(0.0, 0.6, 0.9, side_depth_m);
+  s.Box(0.6 + gap_m, 1.2 + gap_m, 0.9, side_depth_m);
+  return FindSlots(s.points, s.normals, kElementArea, options).size();
+}
+
 TEST(FindSlotsTest, CutsBetweenTwoCabinetsStandingAGapApart) {
   Surface s;
   s.Box(0.0, 0.6, 0.9, 0.1);
@@ -70,16 +78,11 @@ TEST(FindSlotsTest, ThreeCabinetsGiveTwoCuts) {
 }
 
 TEST(FindSlotsTest, NoCutAcrossADoorGapAFarGapOrBetweenFacesTurnedAway) {
+  EXPECT_EQ(SlotsBetweenTwoBoxes(0.025, 0.1), 1u);
   // Door gap: 5 mm, below min_gap_m.
-  Surface door_gap;
-  door_gap.Box(0.0, 0.6, 0.9, 0.1);
-  door_gap.Box(0.605, 1.205, 0.9, 0.1);
-  EXPECT_TRUE(FindSlots(door_gap.points, door_gap.normals, kElementArea, Enabled()).empty());
+  EXPECT_EQ(SlotsBetweenTwoBoxes(0.005, 0.1), 0u);
   // 30 cm apart: two objects, but no slot (their gap is resolved anyway).
-  Surface far;
-  far.Box(0.0, 0.6, 0.9, 0.1);
-  far.Box(0.9, 1.5, 0.9, 0.1);
-  EXPECT_TRUE(FindSlots(far.points, far.normals, kElementArea, Enabled()).empty());
+  EXPECT_EQ(SlotsBetweenTwoBoxes(0.3, 0.1), 0u);
   // A panel 3 cm thick: its faces turn away from each other (-y first, then +y).
   Surface panel;
   const Eigen::Vector3f X = Eigen::Vector3f::UnitX(), Y = Eigen::Vector3f::UnitY(), Z = Eigen::Vector3f::UnitZ();
@@ -100,7 +103,7 @@ TEST(FindSlotsTest, ChairSeatAndBackrestAFewCentimetresApartAreNoSlot) {
   chair.Rect(Eigen::Vector3f(0.f, 0.48f, 0.f), X, 0.0, 0.45, Z, 0.45, 1.0, -Y);     // backrest front
   chair.Rect(Eigen::Vector3f(0.f, 0.51f, 0.f), X, 0.0, 0.45, Z, 0.45, 1.0, Y);      // backrest back
   EXPECT_TRUE(FindSlots(chair.points, chair.normals, kElementArea, Enabled()).empty());
-  // The same two sheets at one height are a slot.
+  // Without the overlap rule, they would be one.
   SlotSplitOptions any_overlap = Enabled();
   any_overlap.min_sheet_overlap = 0.0;
   EXPECT_EQ(FindSlots(chair.points, chair.normals, kElementArea, any_overlap).size(), 1u);
@@ -108,17 +111,11 @@ TEST(FindSlotsTest, ChairSeatAndBackrestAFewCentimetresApartAreNoSlot) {
 
 TEST(FindSlotsTest, SmallSheetsAndSmallPiecesAreNoSlot) {
   // Side faces seen only 1 cm deep: 0.009 m2 each, under min_sheet_area_m2.
-  Surface shallow;
-  shallow.Box(0.0, 0.6, 0.9, 0.0);
-  shallow.Box(0.625, 1.225, 0.9, 0.0);
-  EXPECT_TRUE(FindSlots(shallow.points, shallow.normals, kElementArea, Enabled()).empty());
-  // A 10 cm piece beside a cabinet: under min_part_area_m2 on its side.
-  Surface small;
-  small.Box(0.0, 0.6, 0.9, 0.1);
+  EXPECT_EQ(SlotsBetweenTwoBoxes(0.025, 0.0), 0u);
+  // Each box holds about 1.1 m2: under a min_part_area_m2 of 1.2 on either side.
   SlotSplitOptions o = Enabled();
   o.min_part_area_m2 = 1.2;
-  small.Box(0.625, 1.225, 0.9, 0.1);
-  EXPECT_TRUE(FindSlots(small.points, small.normals, kElementArea, o).empty());
+  EXPECT_EQ(SlotsBetweenTwoBoxes(0.025, 0.1, o), 0u);
 }
 
 TEST(FindSlotsTest, RotatedRunIsCutAlongItsOwnAxis) {
@@ -135,12 +132,7 @@ TEST(FindSlotsTest, RotatedRunIsCutAlongItsOwnAxis) {
   EXPECT_NEAR(std::fabs(slots[0].axis.dot(run_axis)), 1.0, 1e-3);
 }
 
-TEST(FindSlotsTest, DisabledFindsNothing) {
-  Surface s;
-  s.Box(0.0, 0.6, 0.9, 0.1);
-  s.Box(0.625, 1.225, 0.9, 0.1);
-  EXPECT_TRUE(FindSlots(s.points, s.normals, kElementArea, SlotSplitOptions()).empty());
-}
+TEST(FindSlotsTest, DisabledFindsNothing) { EXPECT_EQ(SlotsBetweenTwoBoxes(0.025, 0.1, SlotSplitOptions()), 0u); }
 
 }  // namespace
 }  // namespace objscan::segmentation
