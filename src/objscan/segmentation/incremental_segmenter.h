@@ -9,6 +9,7 @@
 //   4. vote: every pixel votes its segment's label into its map element, weighted by confidence.
 // Components() then gathers C (label -> points, normals, bounds, area) and the adjacency graph,
 // recomputing only labels that changed.
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -98,7 +99,8 @@ class IncrementalSegmenter {
                               mapping::SurfaceMap* map);
 
   // Components C and their adjacency (elements of two labels in the same or 26-neighbouring cells of
-  // adjacency_cell_voxels voxels). Recomputes the labels the map reports dirty since the last call.
+  // adjacency_cell_voxels voxels). Recomputes the labels the map reports dirty since the last call;
+  // with slot_split on, then cuts those holding a slot (relabelling map elements) and rebuilds.
   const ComponentGraph& Components(mapping::SurfaceMap* map);
   // Labels whose component changed (or vanished) in the last Components() call, ascending.
   const std::vector<std::int32_t>& changed_labels() const { return changed_labels_; }
