@@ -7,28 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include "objscan/common/trimmed_range.h"
 #include "objscan/recognition/model_database.h"
 
 namespace objscan::recognition {
-
-namespace {
-
-// The range [lo, hi] of `values` between the k-th smallest and the k-th largest (k = 0: extremes).
-// Reorders `values`.
-std::pair<float, float> TrimmedRange(std::vector<float>* values, std::size_t k) {
-  auto& v = *values;
-  if (k == 0) {
-    const auto mm = std::minmax_element(v.begin(), v.end());
-    return {*mm.first, *mm.second};
-  }
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  const float lo = v[k];
-  const std::size_t top = v.size() - 1 - k;
-  std::nth_element(v.begin() + static_cast<std::ptrdiff_t>(k), v.begin() + static_cast<std::ptrdiff_t>(top), v.end());
-  return {lo, v[top]};
-}
-
-}  // namespace
 
 ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_steps, double trim_fraction) {
   ObjectExtent e;

@@ -410,7 +410,9 @@ TEST(IncrementalSegmenterTest, SlotSplitCutsACounterRunIntoItsCabinets) {
     for (int cabinet = 1; cabinet <= 3; ++cabinet) {
       const auto [label, share] = MajorityLabel(per_instance.at(cabinet));
       labels.push_back(label);
-      if (slot_split) EXPECT_GE(share, 0.8) << "cabinet " << cabinet;
+      if (slot_split) {
+        EXPECT_GE(share, 0.8) << "cabinet " << cabinet;
+      }
     }
     const std::set<std::int32_t> distinct(labels.begin(), labels.end());
     if (!slot_split) {

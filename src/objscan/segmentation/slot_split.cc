@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "objscan/common/trimmed_range.h"
 
 namespace objscan::segmentation {
 
@@ -44,30 +47,18 @@ double DominantYaw(const std::vector<Eigen::Vector3f>& normals) {
   return (best + 0.5) * (0.5 * M_PI) / kBins;
 }
 
-struct Range {
-  double lo = 0.0, hi = 0.0;
-};
-
-// The 5% and 95% quantiles of `values` (reordered).
-Range QuantileRange(std::vector<float>* values) {
-  Range r;
-  if (values->empty()) return r;
-  const std::size_t n = values->size();
-  const std::size_t lo = n / 20, hi = n - 1 - n / 20;
-  std::nth_element(values->begin(), values->begin() + lo, values->end());
-  r.lo = (*values)[lo];
-  std::nth_element(values->begin(), values->begin() + hi, values->end());
-  r.hi = (*values)[hi];
-  return r;
-}
+using Range = std::pair<float, float>;  // [first, second]
 
 // Share of the smaller range that the other covers (1 for two points at one place).
 double Overlap(const Range& a, const Range& b) {
-  const double shorter = std::min(a.hi - a.lo, b.hi - b.lo);
-  const double common = std::min(a.hi, b.hi) - std::max(a.lo, b.lo);
+  const double shorter = std::min(a.second - a.first, b.second - b.first);
+  const double common = std::min(a.second, b.second) - std::max(a.first, b.first);
   if (shorter <= 0.0) return common >= 0.0 ? 1.0 : 0.0;
   return std::clamp(common / shorter, 0.0, 1.0);
 }
+
+// The 5% and 95% quantiles of `values` (reordered).
+Range QuantileRange(std::vector<float>* values) { return TrimmedRange(values, values->size() / 20); }
 
 void SlotsAlong(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
                 const Eigen::Vector3f& axis, double element_area_m2, const SlotSplitOptions& o,
@@ -132,10 +123,10 @@ void SlotsAlong(const std::vector<Eigen::Vector3f>& points, const std::vector<Ei
       s.axis = axis;
       s.across = across;
       s.offset_m = t_min + bin * cut_bin;
-      s.across_min_m = std::min(up.lo, um.lo);
-      s.across_max_m = std::max(up.hi, um.hi);
-      s.z_min_m = std::min(zp.lo, zm.lo);
-      s.z_max_m = std::max(zp.hi, zm.hi);
+      s.across_min_m = std::min(up.first, um.first);
+      s.across_max_m = std::max(up.second, um.second);
+      s.z_min_m = std::min(zp.first, zm.first);
+      s.z_max_m = std::max(zp.second, zm.second);
       slots->push_back(s);
       last_cut_area = before;
     }

@@ -55,12 +55,6 @@ struct Slot {
   double offset_m = 0.0;
   double across_min_m = 0.0, across_max_m = 0.0;
   double z_min_m = 0.0, z_max_m = 0.0;
-  // Whether p lies beside the sheets (within margin_m of their extent across and in height).
-  bool Covers(const Eigen::Vector3f& p, double margin_m) const {
-    const double u = p.dot(across);
-    return u >= across_min_m - margin_m && u <= across_max_m + margin_m && p.z() >= z_min_m - margin_m &&
-           p.z() <= z_max_m + margin_m;
-  }
   bool Before(const Eigen::Vector3f& p) const { return p.dot(axis) < offset_m; }
 };
 
