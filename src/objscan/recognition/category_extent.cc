@@ -41,6 +41,10 @@ ObjectExtent MeasureExtent(const std::vector<Eigen::Vector3f>& points, int yaw_s
   return e;
 }
 
+ObjectExtent MeasureObjectExtent(const std::vector<Eigen::Vector3f>& points, const SizePlausibilityOptions& options) {
+  return MeasureExtent(points, 16, options.extent_trim_fraction);
+}
+
 void CategoryExtents::Add(world::Category category, const ObjectExtent& extent) {
   const int id = world::CategoryId(category);
   if (id < 0 || id >= world::kNumObjectCategories) return;

@@ -104,6 +104,10 @@ struct SizePlausibilityOptions {
   void Validate() const;
 };
 
+// A reconstructed object's extent as the size check measures it: MeasureExtent with the default
+// yaw steps and options.extent_trim_fraction.
+ObjectExtent MeasureObjectExtent(const std::vector<Eigen::Vector3f>& points, const SizePlausibilityOptions& options);
+
 // True when `extent` fits `range` under `options` (always true when disabled or when range is null).
 bool IsPlausibleExtent(const ObjectExtent& extent, const ExtentRange* range, const SizePlausibilityOptions& options);
 

@@ -1155,7 +1155,7 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     ObjectRecord& o = rec.objects[i];
     const std::vector<Eigen::Vector3f> measured =
         PointsAwayFromWalls(object_points[i], s.structure, size_check.wall_margin_m);
-    extents[i] = recognition::MeasureExtent(measured, 16, size_check.extent_trim_fraction);
+    extents[i] = recognition::MeasureObjectExtent(measured, size_check);
     o.height_m = extents[i].height_m;
     o.footprint_diagonal_m = extents[i].footprint_diagonal_m;
     if (full_matches[i] == nullptr) continue;

@@ -43,10 +43,10 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
            out.category[static_cast<std::size_t>(i)].has_value();
   };
   std::vector<recognition::ObjectExtent> extent(static_cast<std::size_t>(n));
-  const auto measure = [&](const std::vector<Eigen::Vector3f>& p) {
-    return recognition::MeasureExtent(p, 16, options.extent_trim_fraction);
-  };
-  for (int i = 0; i < n; ++i) extent[static_cast<std::size_t>(i)] = measure(points[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    extent[k] = recognition::MeasureObjectExtent(points[k], options);
+  }
   std::set<int> tried_and_stayed;  // implausible objects no neighbour takes (until something changes)
   while (true) {
     // The smallest implausible object not yet known to stay.
@@ -65,7 +65,7 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
       if (!movable(h)) continue;
       std::vector<Eigen::Vector3f> joined = points[static_cast<std::size_t>(h)];
       joined.insert(joined.end(), points[static_cast<std::size_t>(piece)].begin(), points[static_cast<std::size_t>(piece)].end());
-      const recognition::ObjectExtent e = measure(joined);
+      const recognition::ObjectExtent e = recognition::MeasureObjectExtent(joined, options);
       const world::Category host_category = *out.category[static_cast<std::size_t>(h)];
       const world::Category piece_category = *out.category[static_cast<std::size_t>(piece)];
       const bool host_plausible = fits(extent[static_cast<std::size_t>(h)], host_category);
@@ -178,8 +178,7 @@ RegroupResult JoinStackedPieces(const std::vector<RegroupCandidate>& objects, do
     const auto& from_points = out.points_world[static_cast<std::size_t>(from)];
     joined.insert(joined.end(), from_points.begin(), from_points.end());
     const world::Category label = *objects[static_cast<std::size_t>(into)].category;
-    const recognition::ObjectExtent joined_extent =
-        recognition::MeasureExtent(joined, 16, options.extent_trim_fraction);
+    const recognition::ObjectExtent joined_extent = recognition::MeasureObjectExtent(joined, options);
     if (!recognition::IsPlausibleExtent(joined_extent, extents.Find(label), options)) continue;
     out.points_world[static_cast<std::size_t>(into)] = std::move(joined);
     out.points_world[static_cast<std::size_t>(from)].clear();
