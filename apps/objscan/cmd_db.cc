@@ -154,7 +154,7 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   build->add_option("--out", args->out, "output database file F.db")->required();
   build->add_option("--variants", args->variants, "procedural models per category")->default_str("8");
   build->add_option("--sampling", args->sampling,
-                    "procedural models per category: 'styles' (every style of the generator in turn), 'spread' (k-medoids over sizes) or 'first-seeds'")
+                    "procedural models per category: 'styles' (every style of the generator in turn), 'style-medoids' (as styles, each style's size medoids), 'spread' (k-medoids over sizes) or 'first-seeds'")
       ->default_str("styles");
   build->add_option("--threads", args->threads, "models scanned in parallel (0 = all cores; same result)")
       ->default_str("0");

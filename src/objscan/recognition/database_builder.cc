@@ -223,6 +223,7 @@ const char* ProceduralSamplingName(ProceduralSampling sampling) {
   switch (sampling) {
     case ProceduralSampling::kSpread: return "spread";
     case ProceduralSampling::kStyles: return "styles";
+    case ProceduralSampling::kStyleMedoids: return "style-medoids";
     default: return "first-seeds";
   }
 }
@@ -230,8 +231,9 @@ const char* ProceduralSamplingName(ProceduralSampling sampling) {
 ProceduralSampling ParseProceduralSampling(const std::string& name, const std::string& field) {
   if (name == "spread") return ProceduralSampling::kSpread;
   if (name == "styles") return ProceduralSampling::kStyles;
+  if (name == "style-medoids") return ProceduralSampling::kStyleMedoids;
   if (name == "first-seeds") return ProceduralSampling::kFirstSeeds;
-  throw InputError(field + ": unknown procedural sampling '" + name + "' (expected styles, spread or first-seeds)");
+  throw InputError(field + ": unknown procedural sampling '" + name + "' (expected styles, style-medoids, spread or first-seeds)");
 }
 
 std::vector<int> GreedyMedoids(const std::vector<std::vector<double>>& features, int count) {
@@ -281,17 +283,16 @@ std::vector<world::procedural::FurnitureModel> SamplingPool(world::Category cate
   return pool;
 }
 
-// The pool indices (offsets from first_index) of a category's spread sample.
-std::vector<int> SpreadIndices(world::Category category, int variants, std::uint64_t first_index) {
-  const std::vector<world::procedural::FurnitureModel> models = SamplingPool(category, variants, first_index);
+// Each model's bounding-box size (height, width, depth; the front faces +X), each dimension over
+// its standard deviation in the pool (a constant one drops out).
+std::vector<std::vector<double>> NormalisedSizes(const std::vector<world::procedural::FurnitureModel>& models) {
   const int pool = static_cast<int>(models.size());
   std::vector<std::vector<double>> size(pool);
   for (int k = 0; k < pool; ++k) {
     const geometry::Aabb3 box = geometry::Bounds(models[k].mesh);
     const Eigen::Vector3d extent = box.max_m - box.min_m;
-    size[k] = {extent.z(), extent.y(), extent.x()};  // height, width, depth (front faces +X)
+    size[k] = {extent.z(), extent.y(), extent.x()};
   }
-  // Each dimension over its standard deviation in the pool (a constant one drops out).
   for (int f = 0; f < 3; ++f) {
     double mean = 0.0, var = 0.0;
     for (const auto& s : size) mean += s[f] / pool;
@@ -299,11 +300,17 @@ std::vector<int> SpreadIndices(world::Category category, int variants, std::uint
     const double sd = std::sqrt(var);
     for (auto& s : size) s[f] = sd > 1e-9 ? s[f] / sd : 0.0;
   }
-  return GreedyMedoids(size, variants);
+  return size;
 }
 
-// The pool indices of a category's style-stratified sample.
-std::vector<int> StyleIndices(world::Category category, int variants, std::uint64_t first_index) {
+// The pool indices (offsets from first_index) of a category's spread sample.
+std::vector<int> SpreadIndices(world::Category category, int variants, std::uint64_t first_index) {
+  return GreedyMedoids(NormalisedSizes(SamplingPool(category, variants, first_index)), variants);
+}
+
+// The pool indices of a category's style-stratified sample; with `medoids`, each style's models are
+// the size medoids of its pool models instead of its first ones.
+std::vector<int> StyleIndices(world::Category category, int variants, std::uint64_t first_index, bool medoids) {
   const std::vector<world::procedural::FurnitureModel> models = SamplingPool(category, variants, first_index);
   const int pool = static_cast<int>(models.size());
   const std::string prefix = std::string(world::CategoryName(category)) + "_";
@@ -333,6 +340,23 @@ std::vector<int> StyleIndices(world::Category category, int variants, std::uint6
     ++drawn[style_of[best]];
     out.push_back(best);
   }
+  if (medoids) {
+    // Same count per style, drawn as the medoids of the style's models: a style whose sizes spread
+    // wide (filing cabinets 0.7-1.35 m tall) gets its middle, not whichever came first.
+    const std::vector<std::vector<double>> size = NormalisedSizes(models);
+    out.clear();
+    for (int style = 0; style < static_cast<int>(styles.size()); ++style) {
+      if (drawn[style] == 0) continue;
+      std::vector<int> members;
+      std::vector<std::vector<double>> member_size;
+      for (int k = 0; k < pool; ++k) {
+        if (style_of[k] != style) continue;
+        members.push_back(k);
+        member_size.push_back(size[k]);
+      }
+      for (int m : GreedyMedoids(member_size, drawn[style])) out.push_back(members[m]);
+    }
+  }
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -344,7 +368,9 @@ std::vector<int> SampledIndices(world::Category category, int variants, std::uin
     case ProceduralSampling::kSpread:
       return SpreadIndices(category, variants, first_index);
     case ProceduralSampling::kStyles:
-      return StyleIndices(category, variants, first_index);
+      return StyleIndices(category, variants, first_index, false);
+    case ProceduralSampling::kStyleMedoids:
+      return StyleIndices(category, variants, first_index, true);
     case ProceduralSampling::kFirstSeeds:
       break;
   }

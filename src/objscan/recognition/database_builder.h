@@ -89,9 +89,12 @@ enum class ProceduralSampling {
   // (the first variants * kSamplingPoolPerVariant seeds) among the styles drawn least so far, styles
   // taken in the order they first appear in the pool.
   kStyles,
+  // As kStyles, the same number of models per style, but each style's are the greedy size medoids
+  // (as kSpread) of its models in the pool.
+  kStyleMedoids,
 };
 constexpr int kSamplingPoolPerVariant = 4;
-// "first-seeds" / "spread" / "styles"; ParseProceduralSampling throws InputError naming `field` otherwise.
+// "first-seeds" / "spread" / "styles" / "style-medoids"; ParseProceduralSampling throws InputError naming `field` otherwise.
 const char* ProceduralSamplingName(ProceduralSampling sampling);
 ProceduralSampling ParseProceduralSampling(const std::string& name, const std::string& field);
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <unistd.h>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "objscan/common/error.h"
@@ -260,8 +261,64 @@ TEST(ProceduralSamplingTest, SpreadCoversTheHeightRangeOfShelves) {
   }
 }
 
+TEST(ProceduralSamplingTest, StyleMedoidsKeepTheStyleCountsAndTakeEachStylesMiddle) {
+  constexpr int kVariants = 8;
+  const auto first = OfCategory(ProceduralModelSources(kVariants, 0, ProceduralSampling::kStyles), world::Category::kCabinet);
+  const auto medoid =
+      OfCategory(ProceduralModelSources(kVariants, 0, ProceduralSampling::kStyleMedoids), world::Category::kCabinet);
+  ASSERT_EQ(medoid.size(), first.size());
+  std::multiset<std::string> first_styles, medoid_styles;
+  for (const auto& s : first) first_styles.insert(StyleOf(s));
+  for (const auto& s : medoid) medoid_styles.insert(StyleOf(s));
+  EXPECT_EQ(medoid_styles, first_styles);
+
+  // Brute force: for a style drawn once, the chosen model is the pool member of that style with the
+  // least summed distance to the style's others, sizes over their spread in the whole pool.
+  struct Member { std::uint64_t index; std::string style; Eigen::Vector3d size; };
+  std::vector<Member> pool;
+  for (int k = 0; k < kVariants * kSamplingPoolPerVariant; ++k) {
+    const auto model = world::procedural::GenerateFurniture(world::Category::kCabinet, world::procedural::DatabaseModelSeed(k));
+    const geometry::Aabb3 box = geometry::Bounds(model.mesh);
+    std::string name = model.name.substr(std::string("cabinet_").size());
+    pool.push_back({static_cast<std::uint64_t>(k), name.substr(0, name.find('_')), box.max_m - box.min_m});
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero(), var = Eigen::Vector3d::Zero();
+  for (const auto& m : pool) mean += m.size / pool.size();
+  for (const auto& m : pool) var += (m.size - mean).cwiseAbs2() / pool.size();
+  const Eigen::Vector3d sd = var.cwiseSqrt();
+  int checked = 0;
+  for (const std::string& style : std::set<std::string>(medoid_styles.begin(), medoid_styles.end())) {
+    if (medoid_styles.count(style) != 1) continue;
+    std::uint64_t best = 0;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (const auto& a : pool) {
+      if (a.style != style) continue;
+      double cost = 0.0;
+      for (const auto& b : pool) {
+        if (b.style == style) cost += (a.size - b.size).cwiseQuotient(sd).norm();
+      }
+      if (cost < best_cost - 1e-12) best_cost = cost, best = a.index;
+    }
+    for (const auto& s : medoid) {
+      if (StyleOf(s) == style) {
+        EXPECT_EQ(s.name, "cabinet/" + std::to_string(best)) << style;
+      }
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 4);
+  // The case it is for: the first filing cabinet of the pool is 0.78 m tall, where the generator's
+  // span 0.7-1.35 m; the medoid stands nearer their middle.
+  for (const auto& s : medoid) {
+    if (StyleOf(s) != "filing") continue;
+    const geometry::Aabb3 box = geometry::Bounds(s.load_mesh());
+    EXPECT_GT(box.max_m.z() - box.min_m.z(), 0.85);
+  }
+}
+
 TEST(ProceduralSamplingTest, NamesParseAndUnknownOnesAreRejected) {
-  for (ProceduralSampling s : {ProceduralSampling::kFirstSeeds, ProceduralSampling::kSpread, ProceduralSampling::kStyles}) {
+  for (ProceduralSampling s : {ProceduralSampling::kFirstSeeds, ProceduralSampling::kSpread, ProceduralSampling::kStyles,
+                               ProceduralSampling::kStyleMedoids}) {
     EXPECT_EQ(ParseProceduralSampling(ProceduralSamplingName(s), "--sampling"), s);
   }
   try {
