@@ -1289,6 +1289,22 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       panels[i].complete = o.complete;
       panels[i].num_points = seen.size();
     }
+    // Curtain labels on things that do not hang on a wall go; another confident, plausible match may
+    // replace them.
+    for (std::size_t i = 0; openings.curtain_must_hang && i < host.size(); ++i) {
+      ObjectRecord& o = rec.objects[i];
+      if (host[i] != static_cast<int>(i) || o.category != world::Category::kCurtain) continue;
+      if (!CurtainLabelGoes(o.category, HangingExtent(seen_points(i), s.structure, openings), openings)) continue;
+      if (!o.wall_opening_relabelled) {
+        o.wall_opening_replaced_category = o.category;
+        o.wall_opening_relabelled = true;
+      }
+      o.category.reset();
+      if (full_matches[i] == nullptr) continue;
+      const segmentation::ModelMatch* replacement = ReplacementLabel(world::Category::kCurtain, *full_matches[i], extents[i],
+                                                                     in_opening[i], category_extents, size_check);
+      if (replacement != nullptr) s.Adopt(*replacement, &o);
+    }
     // The panels over one window are one curtain, hosted like the pieces of a window.
     if (openings.join_curtain_panels) {
       const std::vector<int> joined = HostsOfGroups(window_of, panels);

@@ -164,6 +164,12 @@ bool MayBeCurtain(const std::optional<world::Category>& label, double wall_openi
   return *label == world::Category::kWindow && wall_opening_share < options.window_keep_share;
 }
 
+bool CurtainLabelGoes(const std::optional<world::Category>& label, const OpeningExtent& hanging,
+                      const WallOpeningOptions& options) {
+  if (!options.curtain_must_hang || label != world::Category::kCurtain) return false;
+  return hanging.wall < 0 || hanging.fold_depth_m > options.curtain_max_fold_depth_m;
+}
+
 OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
                             const mapping::StructureResult& structure, const WallOpeningOptions& options) {
   OpeningExtent extent;

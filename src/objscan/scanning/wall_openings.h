@@ -60,6 +60,13 @@ struct WallOpeningOptions {
   // one curtain and are reported as one, hosted like window pieces (HostsOfGroups). false = each
   // panel is an object.
   bool join_curtain_panels = true;
+  // A curtain hangs just in front of a wall: a curtain label on an object that does not (HangingExtent
+  // finds no wall it hangs on, or its face spreads deeper than curtain_max_fold_depth_m, a thing with
+  // depth such as shelves) goes, as window labels go off wall openings, and a confident plausible
+  // match of another category takes its place (size_check.relabel). A curtain model's flat face fits
+  // the front of a wardrobe or a bookcase. No window is required: a drawn curtain hides its own.
+  // false = curtain labels from recognition stay.
+  bool curtain_must_hang = false;
   // Doors by their depth: a door leaf is a slab a few centimetres thick (with its handles and what of
   // the wall beside it joins it, under 0.35 m), and what the robot sees of it lies in such a slab; a
   // door label on an object whose seen surface is wider than door_max_depth_m in every horizontal
@@ -86,6 +93,7 @@ struct WallOpeningOptions {
     v("curtain_min_fold_depth_m", curtain_min_fold_depth_m);
     v("curtain_max_fold_depth_m", curtain_max_fold_depth_m);
     v("join_curtain_panels", join_curtain_panels);
+    v("curtain_must_hang", curtain_must_hang);
     v("door_max_depth_m", door_max_depth_m);
   }
   void Validate() const;
@@ -160,6 +168,11 @@ bool MayBeCurtain(const std::optional<world::Category>& label, double wall_openi
 // extent of those points along it and in height (the fields of OpeningExtent, bounds left empty).
 OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
                             const mapping::StructureResult& structure, const WallOpeningOptions& options);
+
+// Under curtain_must_hang, whether an object labelled `label` whose points hang as `hanging`
+// (HangingExtent) loses its label: only a curtain label on a thing that does not hang on a wall does.
+bool CurtainLabelGoes(const std::optional<world::Category>& label, const OpeningExtent& hanging,
+                      const WallOpeningOptions& options);
 
 // The window an object hanging as `hanging` (HangingExtent) is a curtain over: the index of the
 // first of `windows` (their OpeningBounds) it overlaps along the wall by curtain_min_overlap_m and in

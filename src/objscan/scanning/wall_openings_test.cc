@@ -408,5 +408,38 @@ TEST(DoorTest, ADoorLabelNeedsSomethingAsThinAsADoorLeaf) {
   EXPECT_FALSE(TooDeepForADoor(cabinet, off));
 }
 
+TEST(CurtainTest, UnderCurtainMustHangCurtainLabelsOnThingsWithDepthGo) {
+  const mapping::StructureResult room = OneWallRoom();
+  WallOpeningOptions options;
+  options.curtain_must_hang = true;
+  // A pleated panel hanging 10 cm in front of the wall keeps its label, over a window or not (a
+  // drawn curtain hides its window).
+  EXPECT_FALSE(CurtainLabelGoes(world::Category::kCurtain, HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options),
+                                options));
+  EXPECT_FALSE(CurtainLabelGoes(world::Category::kCurtain, HangingExtent(Pleats(0.1, 2.6, 3.6, 0.02, 2.2), room, options),
+                                options));
+  // A wardrobe's front 60 cm from the wall: it hangs on no wall.
+  std::vector<Eigen::Vector3f> wardrobe = Pane(0.6, 2.2, 3.6, 0.0, 2.0);
+  Append(Pane(0.3, 2.2, 3.6, 2.0, 2.0), &wardrobe);
+  const OpeningExtent wardrobe_extent = HangingExtent(wardrobe, room, options);
+  EXPECT_EQ(wardrobe_extent.wall, -1);
+  EXPECT_TRUE(CurtainLabelGoes(world::Category::kCurtain, wardrobe_extent, options));
+  // Shelves 25 cm deep against the wall: near it, but their boards spread deeper than folds do.
+  std::vector<Eigen::Vector3f> shelves = Pane(0.01, 1.2, 1.9, 0.0, 2.0);
+  for (double z : {0.4, 0.8, 1.2, 1.6, 2.0}) {
+    for (double x = 0.02; x <= 0.25 + 1e-9; x += 0.02) Append(Pane(x, 1.2, 1.9, z, z), &shelves);
+  }
+  Append(Pane(0.25, 1.2, 1.22, 0.0, 2.0), &shelves);
+  Append(Pane(0.25, 1.88, 1.9, 0.0, 2.0), &shelves);
+  const OpeningExtent shelf_extent = HangingExtent(shelves, room, options);
+  ASSERT_EQ(shelf_extent.wall, 0);
+  EXPECT_TRUE(CurtainLabelGoes(world::Category::kCurtain, shelf_extent, options));
+  // Only curtain labels are this rule's business.
+  EXPECT_FALSE(CurtainLabelGoes(world::Category::kCabinet, wardrobe_extent, options));
+  EXPECT_FALSE(CurtainLabelGoes(std::nullopt, wardrobe_extent, options));
+  // Off (the default): recognition's curtain labels stay.
+  EXPECT_FALSE(CurtainLabelGoes(world::Category::kCurtain, wardrobe_extent, WallOpeningOptions()));
+}
+
 }  // namespace
 }  // namespace objscan::scanning
