@@ -99,6 +99,7 @@ std::string RunJson(const RunOutputInputs& in) {
       obj["graph_cut_category"] = o.graph_cut_category ? Json(world::CategoryName(*o.graph_cut_category)) : Json(nullptr);
     }
     if (o.size_rejected_category) obj["size_rejected_category"] = world::CategoryName(*o.size_rejected_category);
+    if (o.small_rejected_category) obj["small_rejected_category"] = world::CategoryName(*o.small_rejected_category);
     if (o.wall_opening_share) obj["wall_opening_share"] = *o.wall_opening_share;
     if (o.wall_opening_relabelled) {
       obj["wall_opening_replaced_category"] =

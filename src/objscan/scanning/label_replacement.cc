@@ -24,4 +24,12 @@ std::optional<world::Category> ModelLabel(const std::optional<world::Category>& 
   return graph_cut;
 }
 
+void UnlabelSmallObjects(int min_elements, std::vector<ObjectRecord>* objects) {
+  for (ObjectRecord& o : *objects) {
+    if (!o.category || o.points >= min_elements) continue;
+    o.small_rejected_category = o.category;
+    o.category.reset();
+  }
+}
+
 }  // namespace objscan::scanning

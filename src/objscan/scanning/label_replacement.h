@@ -4,8 +4,10 @@
 // full-model matches may still name what it is: a monitor the graph cut called shelves, a chair it
 // called bed. The replacement must be confident, of another category, and fit the object's size.
 #include <optional>
+#include <vector>
 
 #include "objscan/recognition/category_extent.h"
+#include "objscan/scanning/run_record.h"
 #include "objscan/segmentation/post_matcher.h"
 #include "objscan/world/category.h"
 
@@ -28,5 +30,10 @@ const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const se
 // whole object. `best` may be null (no full model matched).
 std::optional<world::Category> ModelLabel(const std::optional<world::Category>& graph_cut,
                                           const segmentation::ModelMatch* best, double min_objectness);
+
+// Beyond the paper (scanner.min_reported_elements): every labelled object of fewer than
+// `min_elements` map elements (ObjectRecord::points) loses its label, which small_rejected_category
+// keeps. 0 = off.
+void UnlabelSmallObjects(int min_elements, std::vector<ObjectRecord>* objects);
 
 }  // namespace objscan::scanning

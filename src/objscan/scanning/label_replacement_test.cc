@@ -127,5 +127,31 @@ TEST(ModelLabelTest, AConfidentBestModelNamesTheObject) {
   EXPECT_EQ(ModelLabel(Category::kShelves, &monitor, 1.0), Category::kShelves);
 }
 
+TEST(UnlabelSmallObjectsTest, LabelledObjectsUnderTheMinimumLoseTheirLabel) {
+  const auto object = [](std::optional<Category> category, int points) {
+    ObjectRecord o;
+    o.category = category;
+    o.points = points;
+    return o;
+  };
+  std::vector<ObjectRecord> objects = {object(Category::kWindow, 49), object(Category::kLamp, 499),
+                                       object(Category::kLamp, 500), object(std::nullopt, 10),
+                                       object(Category::kBed, 60000)};
+  UnlabelSmallObjects(500, &objects);
+  EXPECT_FALSE(objects[0].category.has_value());
+  EXPECT_EQ(objects[0].small_rejected_category, Category::kWindow);
+  EXPECT_FALSE(objects[1].category.has_value());
+  EXPECT_EQ(objects[1].small_rejected_category, Category::kLamp);
+  EXPECT_EQ(objects[2].category, Category::kLamp);  // at the minimum: kept
+  EXPECT_FALSE(objects[2].small_rejected_category.has_value());
+  EXPECT_FALSE(objects[3].category.has_value());  // unlabelled stays unlabelled, nothing rejected
+  EXPECT_FALSE(objects[3].small_rejected_category.has_value());
+  EXPECT_EQ(objects[4].category, Category::kBed);
+  // 0 = off: every label stays.
+  std::vector<ObjectRecord> off = {object(Category::kWindow, 1)};
+  UnlabelSmallObjects(0, &off);
+  EXPECT_EQ(off[0].category, Category::kWindow);
+}
+
 }  // namespace
 }  // namespace objscan::scanning

@@ -57,6 +57,8 @@ struct ObjectRecord {
   std::optional<world::Category> graph_cut_category;
   // The label it had before the size check found no model of that category its size (nullopt: kept).
   std::optional<world::Category> size_rejected_category;
+  // The label it had before it was found too small to report (scanner.min_reported_elements).
+  std::optional<world::Category> small_rejected_category;
   // Share of its points in wall openings (when walls are known), and the label recognition gave it
   // when that share made it a window or took its window label, or when it was too deep for the door
   // it was labelled (scanner.wall_openings).

@@ -1343,6 +1343,8 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       }
     }
   }
+  // Labelled objects too small to trust are reported as unrecognized surface.
+  UnlabelSmallObjects(s.config.scanner.min_reported_elements, &rec.objects);
   // An object with no element left outside the structure is gone from the map: typically a completed
   // object whose pieces all became wall later (the object that now holds its surface reports it).
   rec.objects.erase(std::remove_if(rec.objects.begin(), rec.objects.end(),
