@@ -29,7 +29,7 @@ struct DbArgs {
   std::string eval_db;
   std::string queries = "procedural";
   int variants = 8;
-  std::string sampling = "styles";  // as the built-in database
+  std::string sampling = "style-medoids";  // as the built-in database
   int queries_per_category = 5;
   int threads = 0;
   std::uint64_t seed = 1;
@@ -155,7 +155,7 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   build->add_option("--variants", args->variants, "procedural models per category")->default_str("8");
   build->add_option("--sampling", args->sampling,
                     "procedural models per category: 'styles' (every style of the generator in turn), 'style-medoids' (as styles, each style's size medoids), 'spread' (k-medoids over sizes) or 'first-seeds'")
-      ->default_str("styles");
+      ->default_str("style-medoids");
   build->add_option("--threads", args->threads, "models scanned in parallel (0 = all cores; same result)")
       ->default_str("0");
   build->add_option("--seed", args->seed, "seed of the vocabulary (and of scan noise when on)")->default_str("1");

@@ -160,7 +160,9 @@ class PlaneStructure : public SpaceEvidence {
 // nothing; explaining everything leaves only d(c, m).
 TEST_F(RecognizerTest, StructureExplainsModelSurfaceInTheCompletenessTerm) {
   const Eigen::Affine3d T_world_model = Placement(0.0, {1.0, 0.5, 0.0});
-  const Recognizer plain(*db_, RecognitionOptions());
+  RecognitionOptions paper;
+  paper.structure_completeness = false;
+  const Recognizer plain(*db_, paper);
   const QueryDescription q = plain.Describe(Query(&testing::ChairLike, T_world_model, true));
   const auto similar = plain.Retrieve(q, RetrievalScope::kFullModels);
   ASSERT_FALSE(similar.empty());
@@ -174,6 +176,7 @@ TEST_F(RecognizerTest, StructureExplainsModelSurfaceInTheCompletenessTerm) {
 
   RecognitionOptions options;
   options.structure_completeness = true;
+  EXPECT_TRUE(RecognitionOptions().structure_completeness) << "the default since session 24";
   const Recognizer explained(*db_, options);
   EXPECT_DOUBLE_EQ(explained.Match(q, entry).objectness.objectness, base.objectness.objectness);  // no evidence
   const SimilarModel m = explained.Match(q, entry, &wall);

@@ -23,8 +23,10 @@ struct MapSpaceEvidenceOptions {
   // Whether the floor counts as structure in SquaredDistanceToStructure (walls always do).
   bool floor_is_structure = true;
   // A face rests against a wall when its normal and the wall's point against each other by at least
-  // this cosine (SquaredDistanceToStructure; any face counts for the floor); -1 = any face.
-  double facing_min_cos = 0.5;
+  // this cosine (SquaredDistanceToStructure; any face counts for the floor); -1 = any face (the
+  // default: faces turned to the wall alone gained nothing over the 60 procedural rooms, any face
+  // +2.9 points of coverage; a window's frame in the wall plane is explained by the wall too).
+  double facing_min_cos = -1.0;
 
   template <class V>
   void Visit(V& v) {

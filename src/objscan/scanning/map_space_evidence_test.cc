@@ -71,7 +71,9 @@ TEST(MapSpaceEvidence, WithoutErosionEveryFreeVoxelIsImpossibleAndFractionsCount
 }
 
 TEST(MapSpaceEvidence, DistanceToStructureIsToTheFloorOrAWallAFaceRestsAgainst) {
-  const MapSpaceEvidence e = Evidence();
+  MapSpaceEvidenceOptions facing;
+  facing.facing_min_cos = 0.5;
+  const MapSpaceEvidence e = Evidence(facing);
   // Floor z = 0; wall x = 0.9 facing -x, over y in [0, 1] and z in [0, 1]. Any face counts for the
   // floor; for the wall, faces turned to it (+x).
   const Eigen::Vector3f down(0, 0, -1), to_wall(1, 0, 0), to_room(-1, 0, 0);
@@ -85,7 +87,10 @@ TEST(MapSpaceEvidence, DistanceToStructureIsToTheFloorOrAWallAFaceRestsAgainst) 
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 1.5f, 0.5f}, to_wall), 0.25, 1e-6);  // beside its span
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 1.4f}, to_wall), 1.96, 1e-5);  // above it
   EXPECT_NEAR(e.SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, both), 0.0025, 1e-6);     // the nearer of two
-  MapSpaceEvidenceOptions no_floor;
+  // The default, -1: any face near the wall, also one turned to the room (a window frame in its plane).
+  EXPECT_NEAR(Evidence().SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_room), 0.0025, 1e-6);
+  EXPECT_NEAR(Evidence().SquaredDistanceToStructure({0.85f, 1.5f, 0.5f}, to_room), 0.25, 1e-6);  // beside its span
+  MapSpaceEvidenceOptions no_floor = facing;
   no_floor.floor_is_structure = false;
   EXPECT_TRUE(std::isinf(Evidence(no_floor).SquaredDistanceToStructure({0.2f, 0.5f, 0.3f}, down)));
   EXPECT_NEAR(Evidence(no_floor).SquaredDistanceToStructure({0.85f, 0.5f, 0.5f}, to_wall), 0.0025, 1e-6);

@@ -66,7 +66,7 @@ struct WallOpeningOptions {
   // match of another category takes its place (size_check.relabel). A curtain model's flat face fits
   // the front of a wardrobe or a bookcase. No window is required: a drawn curtain hides its own.
   // false = curtain labels from recognition stay.
-  bool curtain_must_hang = false;
+  bool curtain_must_hang = true;
   // Doors by their depth: a door leaf is a slab a few centimetres thick (with its handles and what of
   // the wall beside it joins it, under 0.35 m), and what the robot sees of it lies in such a slab; a
   // door label on an object whose seen surface is wider than door_max_depth_m in every horizontal

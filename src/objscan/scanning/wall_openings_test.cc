@@ -437,8 +437,10 @@ TEST(CurtainTest, UnderCurtainMustHangCurtainLabelsOnThingsWithDepthGo) {
   // Only curtain labels are this rule's business.
   EXPECT_FALSE(CurtainLabelGoes(world::Category::kCabinet, wardrobe_extent, options));
   EXPECT_FALSE(CurtainLabelGoes(std::nullopt, wardrobe_extent, options));
-  // Off (the default): recognition's curtain labels stay.
-  EXPECT_FALSE(CurtainLabelGoes(world::Category::kCurtain, wardrobe_extent, WallOpeningOptions()));
+  // Off: recognition's curtain labels stay.
+  WallOpeningOptions off = options;
+  off.curtain_must_hang = false;
+  EXPECT_FALSE(CurtainLabelGoes(world::Category::kCurtain, wardrobe_extent, off));
 }
 
 }  // namespace
