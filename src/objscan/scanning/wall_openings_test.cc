@@ -282,6 +282,18 @@ std::vector<Eigen::Vector3f> Pleats(double x0, double y0, double y1, double z0, 
   return points;
 }
 
+// Shelves 25 cm deep against the wall x = 0, y in [1.2, 1.9], 2 m tall: a back board, five boards
+// from the wall to 25 cm, and the front edges of the sides.
+std::vector<Eigen::Vector3f> ShelvesAgainstTheWall() {
+  std::vector<Eigen::Vector3f> shelves = Pane(0.01, 1.2, 1.9, 0.0, 2.0);
+  for (double z : {0.4, 0.8, 1.2, 1.6, 2.0}) {
+    for (double x = 0.02; x <= 0.25 + 1e-9; x += 0.02) Append(Pane(x, 1.2, 1.9, z, z), &shelves);
+  }
+  Append(Pane(0.25, 1.2, 1.22, 0.0, 2.0), &shelves);
+  Append(Pane(0.25, 1.88, 1.9, 0.0, 2.0), &shelves);
+  return shelves;
+}
+
 TEST(CurtainTest, APanelHangingOverAWindowIsACurtain) {
   const mapping::StructureResult room = OneWallRoom();
   const WallOpeningOptions options;
@@ -350,13 +362,7 @@ TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
   EXPECT_EQ(HangingExtent(Pane(0.6, 1.0, 2.0, 0.0, 0.9), room, any_share).wall, -1);
   // Shelves 25 cm deep against the wall over the window: boards from the wall to 25 cm, a back
   // board; their spread is that of a thing with depth, not of folds.
-  std::vector<Eigen::Vector3f> shelves = Pane(0.01, 1.2, 1.9, 0.0, 2.0);
-  for (double z : {0.4, 0.8, 1.2, 1.6, 2.0}) {
-    for (double x = 0.02; x <= 0.25 + 1e-9; x += 0.02) Append(Pane(x, 1.2, 1.9, z, z), &shelves);
-  }
-  Append(Pane(0.25, 1.2, 1.22, 0.0, 2.0), &shelves);
-  Append(Pane(0.25, 1.88, 1.9, 0.0, 2.0), &shelves);
-  const OpeningExtent shelf_extent = HangingExtent(shelves, room, options);
+  const OpeningExtent shelf_extent = HangingExtent(ShelvesAgainstTheWall(), room, options);
   ASSERT_EQ(shelf_extent.wall, 0);
   EXPECT_GT(shelf_extent.fold_depth_m, options.curtain_max_fold_depth_m);
   EXPECT_EQ(CurtainWindow(shelf_extent, windows, options), -1);
@@ -425,13 +431,7 @@ TEST(CurtainTest, UnderCurtainMustHangCurtainLabelsOnThingsWithDepthGo) {
   EXPECT_EQ(wardrobe_extent.wall, -1);
   EXPECT_TRUE(CurtainLabelGoes(world::Category::kCurtain, wardrobe_extent, options));
   // Shelves 25 cm deep against the wall: near it, but their boards spread deeper than folds do.
-  std::vector<Eigen::Vector3f> shelves = Pane(0.01, 1.2, 1.9, 0.0, 2.0);
-  for (double z : {0.4, 0.8, 1.2, 1.6, 2.0}) {
-    for (double x = 0.02; x <= 0.25 + 1e-9; x += 0.02) Append(Pane(x, 1.2, 1.9, z, z), &shelves);
-  }
-  Append(Pane(0.25, 1.2, 1.22, 0.0, 2.0), &shelves);
-  Append(Pane(0.25, 1.88, 1.9, 0.0, 2.0), &shelves);
-  const OpeningExtent shelf_extent = HangingExtent(shelves, room, options);
+  const OpeningExtent shelf_extent = HangingExtent(ShelvesAgainstTheWall(), room, options);
   ASSERT_EQ(shelf_extent.wall, 0);
   EXPECT_TRUE(CurtainLabelGoes(world::Category::kCurtain, shelf_extent, options));
   // Only curtain labels are this rule's business.
