@@ -1217,6 +1217,20 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
     taken[i] = o.category;
     o.category.reset();
   }
+  // Curtain labels on things that do not hang on a wall go (wall_openings.h, CurtainLabelGoes).
+  const bool curtains_must_hang =
+      openings.enabled && openings.curtain_max_distance_m >= 0.0 && openings.curtain_must_hang;
+  for (std::size_t i = 0; curtains_must_hang && i < host.size(); ++i) {
+    ObjectRecord& o = rec.objects[i];
+    if (host[i] != static_cast<int>(i) || o.category != world::Category::kCurtain) continue;
+    if (!CurtainLabelGoes(o.category, HangingExtent(seen_points(i), s.structure, openings), openings)) continue;
+    if (!o.wall_opening_relabelled) {
+      o.wall_opening_replaced_category = o.category;
+      o.wall_opening_relabelled = true;
+    }
+    taken[i] = o.category;
+    o.category.reset();
+  }
   // A label a check took is replaced by a confident, plausible match of another category.
   for (std::size_t i = 0; i < host.size(); ++i) {
     if (host[i] != static_cast<int>(i) || !taken[i] || full_matches[i] == nullptr) continue;
@@ -1288,22 +1302,6 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
       window_of[i] = window;
       panels[i].complete = o.complete;
       panels[i].num_points = seen.size();
-    }
-    // Curtain labels on things that do not hang on a wall go; another confident, plausible match may
-    // replace them.
-    for (std::size_t i = 0; openings.curtain_must_hang && i < host.size(); ++i) {
-      ObjectRecord& o = rec.objects[i];
-      if (host[i] != static_cast<int>(i) || o.category != world::Category::kCurtain) continue;
-      if (!CurtainLabelGoes(o.category, HangingExtent(seen_points(i), s.structure, openings), openings)) continue;
-      if (!o.wall_opening_relabelled) {
-        o.wall_opening_replaced_category = o.category;
-        o.wall_opening_relabelled = true;
-      }
-      o.category.reset();
-      if (full_matches[i] == nullptr) continue;
-      const segmentation::ModelMatch* replacement = ReplacementLabel(world::Category::kCurtain, *full_matches[i], extents[i],
-                                                                     in_opening[i], category_extents, size_check);
-      if (replacement != nullptr) s.Adopt(*replacement, &o);
     }
     // The panels over one window are one curtain, hosted like the pieces of a window.
     if (openings.join_curtain_panels) {
