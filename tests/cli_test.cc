@@ -71,8 +71,8 @@ TEST(CliTest, BadInputGivesOneLineAndNonZeroExit) {
       {"render --scene procedural:bedroom:1 --pose 1,2,x,0,0 --out " + dir.string(), "--pose"},
       {"run --scene procedural:bedroom:1 --set sensor.nosie=false --out " + dir.string(), "sensor.nosie"},
       // An invalid value names its whole key, not its name inside its options struct.
-      {"run --scene procedural:bedroom:1 --set scanner.size_check.min_ratio=-1 --out " + dir.string(),
-       "scanner.size_check.min_ratio"},
+      {"run --scene procedural:bedroom:1 --set report.size_check.min_ratio=-1 --out " + dir.string(),
+       "report.size_check.min_ratio"},
       {"run --scene procedural:bedroom:1 --db /nonexistent/x.db --out " + dir.string(), "/nonexistent/x.db"},
   };
   for (const auto& c : cases) {

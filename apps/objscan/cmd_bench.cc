@@ -252,7 +252,8 @@ void AddBenchCommand(CLI::App& root, RunFn* run) {
   auto args = std::make_shared<BenchArgs>();
   auto* cmd = root.add_subcommand("bench", "Run a benchmark suite of scenes x methods and write a report");
   cmd->footer(
-      "Methods: ours, no-objectness, no-size, no-distance, no-orientation (NBO ablations), frontier (no object\n"
+      "Methods: ours (objscan's default), paper (config/paper.yaml: the method as published), no-objectness,\n"
+      "no-size, no-distance, no-orientation (NBO ablations), frontier (no object\n"
       "guidance), preseg-only (no graph cuts), db-no-parts (database without component/pair entries).\n"
       "Runs go to OUT/runs/<scene>/<method>/ (finished runs are skipped on a re-run; a failed run keeps its\n"
       "stderr.txt and failed.json); the report to OUT/report/. Exit status 1 when a run failed.");

@@ -10,12 +10,16 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_util.h"
 #include "commands.h"
 #include "objscan/common/config.h"
 #include "objscan/common/error.h"
+#include "objscan/eval/report_variants.h"
 #include "objscan/eval/run_evaluation.h"
 #include "objscan/eval/run_output.h"
+#include "objscan/io/atomic_file.h"
 #include "objscan/io/scene_spec.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/model_database.h"
@@ -92,6 +96,30 @@ std::string DefaultDatabasePath(bool verbose) {
 
 namespace {
 
+// The run's objects reported under each variant of the report options, scored like the run.
+void WriteReportVariants(const std::string& path, const std::vector<eval::ReportVariant>& variants,
+                         const eval::RunEvaluator& evaluator, const scanning::RunRecord& record,
+                         scanning::Scanner* scanner) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  scanning::RunRecord varied = record;
+  for (const eval::ReportVariant& v : variants) {
+    varied.objects = scanner->ReportWith(v.options);
+    evaluator.AssignGroundTruthInstances(*scanner, &varied);
+    const eval::RunMetrics m = evaluator.Evaluate(*scanner, varied);
+    int labelled = 0;
+    for (const auto& o : varied.objects) labelled += o.category.has_value();
+    out[v.name] = {{"rules", v.options.rules},
+                   {"recall", m.recall},
+                   {"precision", m.precision},
+                   {"coverage_rate", m.coverage_rate},
+                   {"true_positives", m.true_positives},
+                   {"output_objects", m.output_objects},
+                   {"ground_truth_objects", m.ground_truth_objects},
+                   {"labelled_objects", labelled}};
+  }
+  io::WriteFileAtomically(path, out.dump(2) + "\n");
+}
+
 int RunScan(const RunArgs& args) {
   std::vector<std::string> sets = args.sets;
   if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
@@ -101,6 +129,7 @@ int RunScan(const RunArgs& args) {
     return 0;
   }
   // Check every input before writing anything.
+  const std::vector<eval::ReportVariant> variants = eval::LoadReportVariants(config.eval.report_variants, config.report);
   const world::Scene scene = io::LoadScene(args.scene, config.scene);
   const std::string db_path = args.db.empty() ? DefaultDatabasePath(!args.quiet) : args.db;
   const recognition::ModelDatabase database = recognition::ModelDatabase::Load(db_path);
@@ -110,10 +139,13 @@ int RunScan(const RunArgs& args) {
 
   scanning::Scanner scanner(config, scene, database, args.seed);
   eval::RunEvaluator evaluator(scene, config, std::vector<world::Category>(known.begin(), known.end()));
-  scanner.set_frame_observer([&evaluator](const sim::DepthFrame& frame) { evaluator.ObserveFrame(frame); });
+  scanner.set_frame_observer([&evaluator](const sim::DepthFrame& frame, const mapping::FrameAssociation& association) {
+    evaluator.ObserveFrame(frame, association);
+  });
   scanner.set_analysis_observer([&evaluator](const scanning::Scanner& s) { evaluator.ObserveAnalysis(s); });
-  const scanning::RunRecord& record = scanner.Run(args.quiet ? nullptr : TerminalProgress("scanning"));
+  scanning::RunRecord record = scanner.Run(args.quiet ? nullptr : TerminalProgress("scanning"));
   FinishProgress();
+  evaluator.AssignGroundTruthInstances(scanner, &record);
   const eval::RunMetrics metrics = evaluator.Evaluate(scanner, record);
 
   eval::RunOutputInputs outputs;
@@ -126,6 +158,7 @@ int RunScan(const RunArgs& args) {
   outputs.database_path = db_path;
   eval::WriteRunOutputs(args.out, outputs);
   scanner.WriteNavigationMap(args.out + "/navmap.png");
+  if (!variants.empty()) WriteReportVariants(args.out + "/report_variants.json", variants, evaluator, record, &scanner);
 
   std::printf(
       "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "

@@ -24,7 +24,7 @@ void Flatten(const YAML::Node& node, const std::string& key, const std::string& 
       std::string joined;
       for (std::size_t i = 0; i < node.size(); ++i) {
         if (!node[i].IsScalar()) {
-          throw ConfigError(origin + ": config key '" + key + "' must be a list of numbers");
+          throw ConfigError(origin + ": config key '" + key + "' must be a list of numbers or names");
         }
         if (i) joined += ",";
         joined += node[i].as<std::string>();
@@ -173,6 +173,23 @@ void ParseInto(const RawConfig::Entry& e, const std::string& key, std::vector<do
   while (std::getline(ss, item, ',')) out->push_back(ParseDouble(item, e, key));
 }
 
+void ParseInto(const RawConfig::Entry& e, const std::string& key, std::vector<std::string>* out) {
+  std::string t = Trim(e.value);
+  if (!t.empty() && t.front() == '[' && t.back() == ']') t = t.substr(1, t.size() - 2);
+  out->clear();
+  if (Trim(t).empty()) return;
+  std::stringstream ss(t);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    item = Trim(item);
+    if (item.size() >= 2 && (item.front() == '"' || item.front() == '\'') && item.back() == item.front()) {
+      item = item.substr(1, item.size() - 2);
+    }
+    if (item.empty()) Bad(e, key, "a list of names");
+    out->push_back(item);
+  }
+}
+
 std::string ToJson(const FlatValues& values, int indent) {
   nlohmann::ordered_json root = nlohmann::ordered_json::object();
   for (const auto& [key, value] : values) {
@@ -215,6 +232,10 @@ std::string ToYaml(const FlatValues& values) {
             out << (v ? "true" : "false");
           } else if constexpr (std::is_same_v<T, std::string>) {
             out << nlohmann::json(v).dump();
+          } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+            out << "[";
+            for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << v[i];
+            out << "]";
           } else if constexpr (std::is_same_v<T, std::vector<double>>) {
             out << "[";
             for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << nlohmann::json(v[i]).dump();

@@ -11,7 +11,8 @@
 //
 // That one list drives loading from YAML, `--set key=value` overrides, rejection of unknown keys and
 // the dump of the effective configuration. A field may itself be a struct with Visit() (a section).
-// Field types: bool, int, std::int64_t, std::uint64_t, double, std::string, std::vector<double>.
+// Field types: bool, int, std::int64_t, std::uint64_t, double, std::string, std::vector<double>,
+// std::vector<std::string> (a YAML sequence of names).
 #include <cstdint>
 #include <map>
 #include <string>
@@ -52,7 +53,8 @@ class RawConfig {
   std::map<std::string, Entry> entries_;
 };
 
-using Value = std::variant<bool, std::int64_t, std::uint64_t, double, std::string, std::vector<double>>;
+using Value = std::variant<bool, std::int64_t, std::uint64_t, double, std::string, std::vector<double>,
+                           std::vector<std::string>>;
 using FlatValues = std::vector<std::pair<std::string, Value>>;
 
 // Parsers used by the visitors; throw ConfigError naming key and origin.
@@ -63,6 +65,7 @@ void ParseInto(const RawConfig::Entry& e, const std::string& key, std::uint64_t*
 void ParseInto(const RawConfig::Entry& e, const std::string& key, double* out);
 void ParseInto(const RawConfig::Entry& e, const std::string& key, std::string* out);
 void ParseInto(const RawConfig::Entry& e, const std::string& key, std::vector<double>* out);
+void ParseInto(const RawConfig::Entry& e, const std::string& key, std::vector<std::string>* out);
 
 template <class T, class = void>
 struct IsSection : std::false_type {};
@@ -152,7 +155,7 @@ class ValidateVisitor {
  private:
   // "config: <field> ..." -> "config: <key><field> ...". A field some Validate() already wrote as a
   // dotted path keeps it, completed in front when it starts with the end of `key`
-  // ("size_check.min_ratio" under "scanner.size_check." -> "scanner.size_check.min_ratio").
+  // ("size_check.min_ratio" under "report.size_check." -> "report.size_check.min_ratio").
   static std::string QualifiedMessage(const std::string& message, const std::string& key) {
     const std::string tag = "config: ";
     if (message.compare(0, tag.size(), tag) != 0) return tag + key + ": " + message;

@@ -18,6 +18,7 @@
 
 #include "objscan/common/error.h"
 #include "objscan/io/atomic_file.h"
+#include "objscan/scanning/system_config.h"
 
 extern char** environ;
 
@@ -128,7 +129,8 @@ Suite ResolveSuite(const std::string& name_or_dir, const SuiteOptions& options) 
 
 std::vector<BenchMethod> AllBenchMethods() {
   return {
-      {"ours", "the paper's method (NBO + NBV, objectness graph cuts)", {}, false},
+      {"ours", "objscan's default: the paper's method with objscan's additions (config/default.yaml)", {}, false},
+      {"paper", "the paper's method as published (config/paper.yaml)", {}, false, "paper.yaml"},
       {"no-objectness", "NBO without the objectness term", {"nbo.objectness_weight=0"}, false},
       {"no-size", "NBO without the size term", {"nbo.size_weight=0"}, false},
       {"no-distance", "NBO without the distance term", {"nbo.distance_weight=0"}, false},
@@ -228,6 +230,9 @@ std::vector<std::string> RunCommandArgs(const BenchJob& job, const RunCommandOpt
                                    job.run_dir, "--seed", std::to_string(options.seed), "--quiet"};
   if (!options.database.empty()) args.insert(args.end(), {"--db", options.database});
   if (!options.model_path.empty()) args.insert(args.end(), {"--model-path", options.model_path});
+  if (!job.method.config_file.empty()) {
+    args.insert(args.end(), {"--config", (fs::path(scanning::ConfigDir()) / job.method.config_file).string()});
+  }
   for (const auto& s : options.sets) args.insert(args.end(), {"--set", s});
   for (const auto& s : job.method.config_sets) args.insert(args.end(), {"--set", s});
   return args;

@@ -64,9 +64,10 @@ struct BenchMethod {
   std::string description;
   std::vector<std::string> config_sets;  // key=value overrides of `objscan run`
   bool database_without_parts = false;   // uses the database variant without component/pair entries
+  std::string config_file;               // a file of the config folder passed as --config ("" for none)
 };
 
-// Every method, in report order: ours, no-objectness, no-size, no-distance, no-orientation,
+// Every method, in report order: ours, paper, no-objectness, no-size, no-distance, no-orientation,
 // frontier, preseg-only, db-no-parts.
 std::vector<BenchMethod> AllBenchMethods();
 // A comma-separated list of method names (empty or "all": every method). Throws InputError naming

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "objscan/eval/exposure.h"
+#include "objscan/eval/ground_truth_votes.h"
 #include "objscan/eval/observability.h"
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/mapping/surface_map.h"
@@ -84,6 +85,7 @@ struct RunEvaluator::Impl {
   std::vector<std::vector<int>> seen_per_view;
   std::vector<Eigen::Vector3d> camera_per_view;
   std::vector<std::pair<int, double>> rand_index_per_view;
+  GroundTruthVotes votes;  // each map element's ground-truth instance
 
   // Ground truth set: every non-structural object; the structural instances listed apart. Fixed for
   // the run, so taken once.
@@ -99,7 +101,7 @@ struct RunEvaluator::Impl {
     for (std::size_t e = 0; e < map.size(); ++e) {
       if (map.structure(e) != mapping::Structure::kNone) continue;
       segment.push_back(object_id[e] >= 0 ? object_id[e] : -1 - map.label(e));
-      instance.push_back(map.gt_instance(e));
+      instance.push_back(votes.Instance(e));
     }
     return NonStructuralRandIndex(segment, instance, truth);
   }
@@ -210,8 +212,9 @@ int RunEvaluator::num_surface_voxels() const {
   return static_cast<int>(impl_->coverage ? impl_->coverage->voxels().size() : impl_->surface_voxels.size());
 }
 
-void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame) {
+void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame, const mapping::FrameAssociation& association) {
   Impl& m = *impl_;
+  m.votes.Observe(frame, association);
   if (!m.coverage) m.BuildExposedCoverage(frame.T_world_camera.translation());
   const float inv = static_cast<float>(1.0 / m.voxel_m);
   const auto& voxels = m.coverage->voxels();
@@ -267,6 +270,33 @@ void RunEvaluator::ObserveAnalysis(const scanning::Scanner& scanner) {
   m.rand_index_per_view.emplace_back(scanner.analysis_views(), ri);
 }
 
+void RunEvaluator::AssignGroundTruthInstances(const scanning::Scanner& scanner, scanning::RunRecord* record) const {
+  const Impl& m = *impl_;
+  const mapping::SurfaceMap& map = scanner.surface_map();
+  std::map<std::int32_t, std::size_t> object_of_label;
+  for (std::size_t i = 0; i < record->objects.size(); ++i) {
+    for (auto l : record->objects[i].labels) object_of_label[l] = i;
+  }
+  std::vector<std::map<std::int32_t, int>> votes(record->objects.size());
+  for (std::size_t e = 0; e < map.size(); ++e) {
+    if (map.structure(e) != mapping::Structure::kNone) continue;
+    auto it = object_of_label.find(map.label(e));
+    if (it == object_of_label.end()) continue;
+    ++votes[it->second][m.votes.Instance(e)];
+  }
+  for (std::size_t i = 0; i < record->objects.size(); ++i) {
+    scanning::ObjectRecord& o = record->objects[i];
+    o.gt_instance = -1;
+    int best = 0;
+    for (const auto& [instance, n] : votes[i]) {
+      if (n > best && instance > 0) {
+        best = n;
+        o.gt_instance = instance;
+      }
+    }
+  }
+}
+
 RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const {
   const Impl& m = *impl_;
   // With no frame seen, V_S was never narrowed to the exposed voxels, and none is visible.
@@ -298,7 +328,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   std::vector<int> object_id, category_id;
   scanner.ElementObjects(&object_id, &category_id);
   out.rand_index = m.RandIndexOf(map, object_id);
-  const auto preseg = segmentation::EvaluatePresegmentation(map, structural);
+  const auto preseg = segmentation::EvaluatePresegmentation(map, m.votes.Instances(map.size()), structural);
   out.rand_index_preseg = preseg.rand_index_preseg;
   out.preseg_purity = preseg.preseg_purity;
 

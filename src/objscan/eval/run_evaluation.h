@@ -76,12 +76,16 @@ class RunEvaluator {
                std::vector<world::Category> database_categories);
   ~RunEvaluator();
 
-  // Feeds one frame (call from the scanner's frame observer).
-  void ObserveFrame(const sim::DepthFrame& frame);
+  // Feeds one frame and where the map fused its pixels (call from the scanner's frame observer).
+  void ObserveFrame(const sim::DepthFrame& frame, const mapping::FrameAssociation& association);
   // Scores the segmentation of one analysis (call from the scanner's analysis observer).
   void ObserveAnalysis(const scanning::Scanner& scanner);
 
-  // Scores the finished run. Also fills record->objects[i].gt_instance when it was unknown.
+  // Each reported object's ground-truth instance (ObjectRecord::gt_instance): the majority instance
+  // of its map elements outside the structure (-1 for none). Call before Evaluate.
+  void AssignGroundTruthInstances(const scanning::Scanner& scanner, scanning::RunRecord* record) const;
+
+  // Scores the finished run (objects' gt_instance as AssignGroundTruthInstances set them).
   RunMetrics Evaluate(const scanning::Scanner& scanner, const scanning::RunRecord& record) const;
 
   // Ground-truth object surface voxels (|V_S| of the coverage metrics).

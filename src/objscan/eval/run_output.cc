@@ -58,12 +58,10 @@ std::string RunJson(const RunOutputInputs& in) {
               {"components", s.num_components},
               {"objects", s.num_objects},
               {"queries", Json{{"component", s.component_queries}, {"pair", s.pair_queries}, {"group", s.group_queries}}}};
-    Json timing = Json::object();
-    for (const char* stage : {"sense", "fuse", "segment", "recognize", "nbo", "nbv", "navigate_sim", "wall"}) {
-      auto it = s.timing_ms.find(stage);
-      timing[stage] = it == s.timing_ms.end() ? 0.0 : it->second;
-    }
-    step["timing_ms"] = timing;
+    const scanning::StageTimes& t = s.timing_ms;
+    step["timing_ms"] = Json{{"sense", t.sense}, {"fuse", t.fuse}, {"segment", t.segment},
+                             {"recognize", t.recognize}, {"nbo", t.nbo}, {"nbv", t.nbv},
+                             {"navigate_sim", t.navigate_sim}, {"wall", s.wall_ms}};
     if (!s.notes.empty()) step["notes"] = s.notes;
     if (!s.nbv_candidates.empty()) {
       Json cands = Json::array();
@@ -95,17 +93,20 @@ std::string RunJson(const RunOutputInputs& in) {
              {"given_up", o.given_up},
              {"pose", ModelPoseJson(o.T_world_model)},
              {"points", o.points}};
-    if (o.model_labelled) {
-      obj["graph_cut_category"] = o.graph_cut_category ? Json(world::CategoryName(*o.graph_cut_category)) : Json(nullptr);
-    }
-    if (o.size_rejected_category) obj["size_rejected_category"] = world::CategoryName(*o.size_rejected_category);
-    if (o.small_rejected_category) obj["small_rejected_category"] = world::CategoryName(*o.small_rejected_category);
     if (o.wall_opening_share) obj["wall_opening_share"] = *o.wall_opening_share;
-    if (o.wall_opening_relabelled) {
-      obj["wall_opening_replaced_category"] =
-          o.wall_opening_replaced_category ? Json(world::CategoryName(*o.wall_opening_replaced_category)) : Json(nullptr);
+    if (!o.label_changes.empty()) {
+      const auto name = [](const std::optional<world::Category>& c) {
+        return c ? Json(world::CategoryName(*c)) : Json(nullptr);
+      };
+      Json changes = Json::array();
+      for (const scanning::LabelChange& c : o.label_changes) {
+        Json change{{"rule", c.rule}, {"action", c.action}, {"from", name(c.from)}, {"to", name(c.to)}};
+        if (!c.model.empty()) change["model"] = c.model;
+        if (c.joined_id >= 0) change["joined_id"] = c.joined_id;
+        changes.push_back(change);
+      }
+      obj["label_changes"] = changes;
     }
-    if (!o.completion_rejected_model.empty()) obj["completion_rejected_model"] = o.completion_rejected_model;
     obj["height_m"] = o.height_m;
     obj["footprint_diagonal_m"] = o.footprint_diagonal_m;
     if (!o.alternatives.empty()) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "objscan/eval/ground_truth_votes.h"
 #include "objscan/mapping/frontiers.h"
 #include "objscan/mapping/occupancy_map.h"
 #include "objscan/mapping/planes.h"
@@ -36,10 +37,11 @@ AnalyticWorld Room() {
 
 // Share of the map elements of ground-truth instance `id` tagged floor or wall; expects at least
 // `min_elements` of them.
-double StructuralShare(const SurfaceMap& map, std::int32_t id, std::size_t min_elements) {
+double StructuralShare(const SurfaceMap& map, const eval::GroundTruthVotes& votes, std::int32_t id,
+                       std::size_t min_elements) {
   std::size_t n = 0, structural = 0;
   for (std::size_t i = 0; i < map.size(); ++i) {
-    if (map.gt_instance(i) != id) continue;
+    if (votes.Instance(i) != id) continue;
     ++n;
     structural += map.structure(i) != Structure::kNone ? 1 : 0;
   }
@@ -184,6 +186,7 @@ TEST(OccupancyMapTest, FloorEndPointsClearSpaceButNeverBlock) {
 
 struct RoomScan {
   SurfaceMap surface;
+  eval::GroundTruthVotes votes;  // each element's ground-truth instance
   OccupancyMap occupancy;
   StructureResult structure;
 };
@@ -198,7 +201,9 @@ void Observe(const AnalyticWorld& room, const geometry::Pose3& T, Rng* rng, Room
   half.cx_px = 159.5;
   half.cy_px = 119.5;
   const sim::DepthFrame frame = room.Render(T, rng, sigma_base_m, sigma_quadratic_per_m, half);
-  scan->surface.Integrate(frame);
+  FrameAssociation association;
+  scan->surface.Integrate(frame, &association);
+  scan->votes.Observe(frame, association);
   scan->occupancy.Integrate(frame);
 }
 
@@ -236,7 +241,7 @@ TEST(StructureAndFrontierTest, FloorWallsFoundAndFrontiersVanishWhenTheFloorIsSe
   // Tags agree with the ground truth.
   std::size_t floor_ok = 0, floor_n = 0, wall_ok = 0, wall_n = 0, box_structural = 0, box_n = 0;
   for (std::size_t i = 0; i < scan.surface.size(); ++i) {
-    const std::int32_t g = scan.surface.gt_instance(i);
+    const std::int32_t g = scan.votes.Instance(i);
     const Structure s = scan.surface.structure(i);
     if (g == kFloor) {
       ++floor_n;
@@ -297,7 +302,7 @@ TEST(StructureTest, LShapedRoomHasInnerWallsAndAWardrobeIsNoWall) {
     EXPECT_EQ(found[k], 1) << "face n=" << faces[k].normal.transpose() << " d=" << faces[k].offset_m;
   }
   // The wardrobe stays an object.
-  EXPECT_LT(StructuralShare(scan.surface, kBox, 5000), 0.03);
+  EXPECT_LT(StructuralShare(scan.surface, scan.votes, kBox, 5000), 0.03);
 }
 
 // A 2 m wardrobe in the corner of a 2.4 m room: the wall behind it is seen only beside it, so no
@@ -325,12 +330,12 @@ TEST(StructureTest, AWardrobeInACornerIsNoWall) {
   overlap_only.furniture_top_margin_m = 0.0;
   scan.structure = StructureDetector(overlap_only).Update(&scan.surface);
   EXPECT_TRUE(wardrobe_front_is_wall(scan.structure)) << "the case the height rule is for";
-  EXPECT_GT(StructuralShare(scan.surface, kBox, 5000), 0.2);
+  EXPECT_GT(StructuralShare(scan.surface, scan.votes, kBox, 5000), 0.2);
 
   scan.structure = StructureDetector().Update(&scan.surface);
   EXPECT_FALSE(wardrobe_front_is_wall(scan.structure));
   EXPECT_EQ(scan.structure.walls.size(), 4u);
-  EXPECT_LT(StructuralShare(scan.surface, kBox, 5000), 0.03);
+  EXPECT_LT(StructuralShare(scan.surface, scan.votes, kBox, 5000), 0.03);
 }
 
 // An L-shaped room (a block fills x in [0.5, 2], y in [0, 1.5]) whose step face y = 0 has been seen
@@ -391,7 +396,7 @@ TEST(StructureTest, ARecessedWindowDoesNotPullTheWallPlane) {
     }
     EXPECT_EQ(at_wall, 1);
     EXPECT_EQ(scan.structure.walls.size(), 4u);
-    EXPECT_LT(StructuralShare(scan.surface, kPane, 2000), 0.05);
+    EXPECT_LT(StructuralShare(scan.surface, scan.votes, kPane, 2000), 0.05);
     if (depth_m > 0.065) {
       // The case the opening depth is for: counting the pane as behind the wall rejects the wall.
       StructureOptions old_rule;
@@ -422,7 +427,7 @@ TEST(StructureTest, ACurtainInFrontOfAWallIsNoWall) {
   EXPECT_EQ(at_wall, 1);
   EXPECT_EQ(at_curtain, 0);
   EXPECT_EQ(scan.structure.walls.size(), 4u);
-  EXPECT_LT(StructuralShare(scan.surface, kCurtain, 5000), 0.05);
+  EXPECT_LT(StructuralShare(scan.surface, scan.votes, kCurtain, 5000), 0.05);
 }
 
 // A long room seen from afar with a noisy sensor (sigma 2 mm + 2.5 mm/m^2): bins a few degrees off a

@@ -114,37 +114,7 @@ std::int32_t SurfaceMap::Insert(const VoxelKey& key) {
   label_.push_back(0);
   label_confidence_.push_back(0.f);
   structure_.push_back(0);
-  gt_id_.push_back(0);
-  gt_id_.push_back(0);
-  gt_count_.push_back(0);
-  gt_count_.push_back(0);
   return index;
-}
-
-void SurfaceMap::VoteGroundTruth(std::size_t i, std::int32_t instance) {
-  std::int32_t* id = &gt_id_[2 * i];
-  std::uint16_t* count = &gt_count_[2 * i];
-  for (int k = 0; k < 2; ++k) {
-    if (id[k] == instance && count[k] > 0) {
-      if (count[k] < 65535) ++count[k];
-      return;
-    }
-  }
-  for (int k = 0; k < 2; ++k) {
-    if (count[k] == 0) {
-      id[k] = instance;
-      count[k] = 1;
-      return;
-    }
-  }
-  --count[0];
-  --count[1];
-}
-
-std::int32_t SurfaceMap::gt_instance(std::size_t i) const {
-  const std::uint16_t c0 = gt_count_[2 * i], c1 = gt_count_[2 * i + 1];
-  if (c0 == 0 && c1 == 0) return 0;
-  return c0 >= c1 ? gt_id_[2 * i] : gt_id_[2 * i + 1];
 }
 
 void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* association) {
@@ -161,7 +131,6 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
     association->num_fused = 0;
     association->num_created = 0;
   }
-  const bool has_gt = frame.gt_instance.size() == frame.depth_m.size();
 
   const Eigen::Matrix3f R = frame.T_world_camera.rotation().cast<float>();
   const Eigen::Vector3f t = frame.T_world_camera.translation().cast<float>();
@@ -261,7 +230,6 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
       normal_sum_[idx] += weight * n;
       weight_[idx] = w_new;
       MarkDirty(label_[idx]);
-      if (has_gt) VoteGroundTruth(idx, frame.gt_instance[i]);
       if (association) association->pixel_element[i] = idx;
       ++fused;
     }
@@ -400,10 +368,6 @@ std::size_t SurfaceMap::Remove(const std::vector<std::int32_t>& labels) {
       label_[out] = label_[i];
       label_confidence_[out] = label_confidence_[i];
       structure_[out] = structure_[i];
-      gt_id_[2 * out] = gt_id_[2 * i];
-      gt_id_[2 * out + 1] = gt_id_[2 * i + 1];
-      gt_count_[2 * out] = gt_count_[2 * i];
-      gt_count_[2 * out + 1] = gt_count_[2 * i + 1];
     }
     ++out;
   }
@@ -415,8 +379,6 @@ std::size_t SurfaceMap::Remove(const std::vector<std::int32_t>& labels) {
   label_.resize(out);
   label_confidence_.resize(out);
   structure_.resize(out);
-  gt_id_.resize(2 * out);
-  gt_count_.resize(2 * out);
   RebuildIndex();
   for (std::int32_t l : labels) MarkDirty(l);
   return removed;

@@ -4,8 +4,8 @@
 // The index is two-level: an open-addressing hash of 8x8x8-voxel blocks, each a dense array of
 // element indices, so the neighbouring voxels association probes mostly share one cached block.
 // Each element keeps a running weighted mean position and normal, a confidence (fusion weight), a
-// pre-segment label with its voting confidence, a structural tag (floor / wall) and, for evaluation
-// only, the majority ground-truth instance of the pixels that saw it.
+// pre-segment label with its voting confidence and a structural tag (floor / wall). The map never
+// reads the frames' ground-truth channel (evaluation does, eval/ground_truth_votes.h).
 //
 // Association keeps a surface seen many times as one layer: a point joins the element of its own
 // voxel or, failing that, an element a few voxels along its normal with an agreeing normal; only
@@ -67,8 +67,7 @@ class SurfaceMap {
   explicit SurfaceMap(const SurfaceMapOptions& options = SurfaceMapOptions());
 
   // Fuses one posed frame. When `association` is given it receives the per-pixel element indices
-  // (valid until the next Integrate/Remove). Ground-truth channels, when present, only feed the
-  // evaluation votes.
+  // (valid until the next Integrate/Remove).
   void Integrate(const sim::DepthFrame& frame, FrameAssociation* association = nullptr);
 
   std::size_t size() const { return keys_.size(); }
@@ -83,8 +82,6 @@ class SurfaceMap {
   float label_confidence(std::size_t i) const { return label_confidence_[i]; }
   Structure structure(std::size_t i) const { return static_cast<Structure>(structure_[i]); }
   const geometry::VoxelKey& key(std::size_t i) const { return keys_[i]; }
-  // Evaluation only: the majority ground-truth instance of the pixels fused here (0 = none).
-  std::int32_t gt_instance(std::size_t i) const;
   // Element index of a voxel, or -1.
   std::int32_t Find(const geometry::VoxelKey& key) const;
 
@@ -129,7 +126,6 @@ class SurfaceMap {
       dirty_labels_.push_back(label);
     }
   }
-  void VoteGroundTruth(std::size_t i, std::int32_t instance);
 
   SurfaceMapOptions options_;
   float inv_voxel_size_;
@@ -142,9 +138,6 @@ class SurfaceMap {
   std::vector<std::int32_t> label_;
   std::vector<float> label_confidence_;
   std::vector<std::uint8_t> structure_;
-  // Two-slot majority vote of ground-truth instances (Misra-Gries): enough to name the majority.
-  std::vector<std::int32_t> gt_id_;      // 2 per element
-  std::vector<std::uint16_t> gt_count_;  // 2 per element
 
   // Block hash (linear probing, power-of-two capacity, at most half full): block key -> offset of
   // its 512 entries in block_elements_ (element index or -1 per voxel).

@@ -1,3 +1,4 @@
+#include "objscan/eval/ground_truth_votes.h"
 #include "objscan/mapping/surface_map.h"
 
 #include <gtest/gtest.h>
@@ -29,10 +30,14 @@ TEST(SurfaceMapTest, BoxFusedFromEightNoisyViewsIsOneAccurateLayer) {
   world.Add(lo, hi, 1);
   Rng rng(7);
   SurfaceMap map;
+  eval::GroundTruthVotes votes;
   for (int k = 0; k < 8; ++k) {
     const double yaw = 2.0 * M_PI * k / 8.0 + 0.2;
     const Eigen::Vector3d eye(1.6 * std::cos(yaw), 1.6 * std::sin(yaw), 1.2);
-    map.Integrate(world.Render(LookAt(eye, Eigen::Vector3d(0, 0, 0.25)), &rng));
+    const sim::DepthFrame frame = world.Render(LookAt(eye, Eigen::Vector3d(0, 0, 0.25)), &rng);
+    FrameAssociation association;
+    map.Integrate(frame, &association);
+    votes.Observe(frame, association);
   }
   ASSERT_GT(map.size(), 10000u);
 
@@ -45,7 +50,7 @@ TEST(SurfaceMapTest, BoxFusedFromEightNoisyViewsIsOneAccurateLayer) {
     const double d = DistanceToBoxSurface(p, lo, hi);
     sum += d;
     within_1cm += d <= 0.01 ? 1 : 0;
-    EXPECT_EQ(map.gt_instance(i), 1);
+    EXPECT_EQ(votes.Instance(i), 1);
     const Eigen::Vector3f n = map.normal(i);
     int axis;
     n.cwiseAbs().maxCoeff(&axis);

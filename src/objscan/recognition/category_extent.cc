@@ -77,19 +77,18 @@ CategoryExtents CategoryExtents::FromDatabase(const ModelDatabase& database) {
 }
 
 void SizePlausibilityOptions::Validate() const {
-  config::RequireInRange("scanner.size_check.min_ratio", min_ratio, 0.0, 1.0);
-  config::RequireInRange("scanner.size_check.extent_trim_fraction", extent_trim_fraction, 0.0, 0.25);
-  config::RequireNonNegative("scanner.size_check.wall_margin_m", wall_margin_m);
-  config::RequirePositive("scanner.size_check.adjacency_m", adjacency_m);
-  config::Require(std::isfinite(support_gap_m), "scanner.size_check.support_gap_m",
-                  "must be a number (negative = off)");
-  config::RequireInRange("scanner.size_check.relabel_min_objectness", relabel_min_objectness, 0.0, 1.0);
-  config::Require(max_ratio >= 1.0 && std::isfinite(max_ratio), "scanner.size_check.max_ratio",
+  config::RequireInRange("report.size_check.min_ratio", min_ratio, 0.0, 1.0);
+  config::RequireInRange("report.size_check.extent_trim_fraction", extent_trim_fraction, 0.0, 0.25);
+  config::RequireNonNegative("report.size_check.wall_margin_m", wall_margin_m);
+  config::RequirePositive("report.size_check.adjacency_m", adjacency_m);
+  config::RequireNonNegative("report.size_check.support_gap_m", support_gap_m);
+  config::RequireInRange("report.size_check.relabel_min_objectness", relabel_min_objectness, 0.0, 1.0);
+  config::Require(max_ratio >= 1.0 && std::isfinite(max_ratio), "report.size_check.max_ratio",
                   "must be a finite number >= 1 (got " + std::to_string(max_ratio) + ")");
 }
 
 bool IsPlausibleExtent(const ObjectExtent& extent, const ExtentRange* range, const SizePlausibilityOptions& options) {
-  if (!options.enabled || range == nullptr) return true;
+  if (range == nullptr) return true;
   const auto within = [&](double value, double lo, double hi) {
     return value >= options.min_ratio * lo && value <= options.max_ratio * hi;
   };

@@ -52,8 +52,6 @@ class CategoryExtents {
 };
 
 struct SizePlausibilityOptions {
-  // false = every recognized object keeps its label, whatever its size (the paper).
-  bool enabled = true;
   // An object is a plausible member of a category when its height and footprint diagonal both lie in
   // [min_ratio * smallest model's, max_ratio * largest model's]. Below: a fragment; above: several
   // objects (or a wall) taken for one.
@@ -70,36 +68,29 @@ struct SizePlausibilityOptions {
   double wall_margin_m = 0.08;
   // An object whose label a check took (this one, or a window label outside wall openings) takes the
   // best-fitting other category among its full-model matches that its size fits, when that match's
-  // objectness reaches relabel_min_objectness; false (or no such match) = it is reported
+  // objectness reaches relabel_min_objectness (report rule relabel); without one it is reported
   // unrecognized. The threshold keeps guesses out: most such labels are right above ~0.92.
-  bool relabel = true;
   double relabel_min_objectness = 0.92;
   // Before the check, pieces too small for their label join an adjacent object whose category the
-  // union fits (scanning/size_regrouping.h).
-  bool regroup = true;
+  // union fits (scanning/size_regrouping.h; report rule regroup_by_size).
   double adjacency_m = 0.05;  // pieces with points this close are adjacent for the regrouping
   // Beyond that, a piece standing under another with at most this gap between the lower one's top
   // and the upper one's bottom is adjacent to it (size_regrouping.h, ObjectsStandingUnder: a table
-  // top and its legs, apart by the unseen underside); negative = off.
+  // top and its legs, apart by the unseen underside).
   double support_gap_m = 0.15;
   // After the regrouping, of two labelled pieces one standing under the other (by support_gap_m),
   // the smaller joins the larger when the union fits the larger's label (size_regrouping.h,
-  // JoinStackedPieces: a lamp's shade taken for a radio over its stem); false = off.
-  bool join_stacked = true;
+  // JoinStackedPieces: a lamp's shade taken for a radio over its stem; report rule join_stacked).
 
   template <class V>
   void Visit(V& v) {
-    v("enabled", enabled);
     v("min_ratio", min_ratio);
     v("max_ratio", max_ratio);
     v("extent_trim_fraction", extent_trim_fraction);
     v("wall_margin_m", wall_margin_m);
-    v("relabel", relabel);
     v("relabel_min_objectness", relabel_min_objectness);
-    v("regroup", regroup);
     v("adjacency_m", adjacency_m);
     v("support_gap_m", support_gap_m);
-    v("join_stacked", join_stacked);
   }
   void Validate() const;
 };
@@ -108,7 +99,7 @@ struct SizePlausibilityOptions {
 // yaw steps and options.extent_trim_fraction.
 ObjectExtent MeasureObjectExtent(const std::vector<Eigen::Vector3f>& points, const SizePlausibilityOptions& options);
 
-// True when `extent` fits `range` under `options` (always true when disabled or when range is null).
+// True when `extent` fits `range` under `options` (always true when range is null).
 bool IsPlausibleExtent(const ObjectExtent& extent, const ExtentRange* range, const SizePlausibilityOptions& options);
 
 }  // namespace objscan::recognition

@@ -112,8 +112,6 @@ TEST(IsPlausibleExtentTest, BoundsAreRatiosOfTheSmallestAndLargestModel) {
   EXPECT_FALSE(IsPlausibleExtent({1.51, 2.5}, &bed, options));
   EXPECT_FALSE(IsPlausibleExtent({0.9, 3.8}, &bed, options));   // a wall's length
   EXPECT_TRUE(IsPlausibleExtent({0.9, 1.1}, nullptr, options));  // no model: nothing to compare
-  options.enabled = false;
-  EXPECT_TRUE(IsPlausibleExtent({0.05, 9.0}, &bed, options));
 }
 
 TEST(SizePlausibilityOptionsTest, RejectsRatiosOnTheWrongSideOfOne) {

@@ -16,7 +16,7 @@ namespace objscan::scanning {
 
 struct CompletionCheckOptions {
   // A completed object whose seen points lie outside its model's bounding box (grown by margin_m)
-  // in a share above this is reported unfinished. Negative = off (the paper: completed is final).
+  // in a share above this is reported unfinished (report rule reopen_outgrown).
   double max_outside_share = 0.3;
   double margin_m = 0.05;
 
@@ -26,8 +26,8 @@ struct CompletionCheckOptions {
     v("margin_m", margin_m);
   }
   void Validate() const {
-    config::Require(max_outside_share <= 1.0, "scanner.completion_check.max_outside_share", "must be <= 1 (negative = off)");
-    config::RequireNonNegative("scanner.completion_check.margin_m", margin_m);
+    config::RequireInRange("report.completion_check.max_outside_share", max_outside_share, 0.0, 1.0);
+    config::RequireNonNegative("report.completion_check.margin_m", margin_m);
   }
 };
 

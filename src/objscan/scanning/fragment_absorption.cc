@@ -19,7 +19,6 @@ std::vector<int> AbsorbExplainedFragments(const std::vector<FragmentCandidate>& 
   const int n = static_cast<int>(objects.size());
   std::vector<int> host(static_cast<std::size_t>(n));
   std::iota(host.begin(), host.end(), 0);
-  if (!options.enabled) return host;
   std::vector<int> order(host);
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return SizeOf(objects[a]) > SizeOf(objects[b]); });

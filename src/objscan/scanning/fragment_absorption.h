@@ -15,7 +15,6 @@
 namespace objscan::scanning {
 
 struct FragmentAbsorptionOptions {
-  bool enabled = true;                  // false = every post-segmented object is reported (the paper)
   double min_host_objectness = 0.8;     // only an object recognized at least this well lends its model
   double distance_m = 0.05;             // a point lies on the model's surface within this distance
   double min_explained_fraction = 0.7;  // share of a fragment's points that must lie on it
@@ -23,17 +22,16 @@ struct FragmentAbsorptionOptions {
 
   template <class V>
   void Visit(V& v) {
-    v("enabled", enabled);
     v("min_host_objectness", min_host_objectness);
     v("distance_m", distance_m);
     v("min_explained_fraction", min_explained_fraction);
     v("max_size_ratio", max_size_ratio);
   }
   void Validate() const {
-    config::RequireInRange("scanner.fragments.min_host_objectness", min_host_objectness, 0.0, 1.0);
-    config::RequirePositive("scanner.fragments.distance_m", distance_m);
-    config::RequireInRange("scanner.fragments.min_explained_fraction", min_explained_fraction, 0.0, 1.0);
-    config::RequireNonNegative("scanner.fragments.max_size_ratio", max_size_ratio);
+    config::RequireInRange("report.fragments.min_host_objectness", min_host_objectness, 0.0, 1.0);
+    config::RequirePositive("report.fragments.distance_m", distance_m);
+    config::RequireInRange("report.fragments.min_explained_fraction", min_explained_fraction, 0.0, 1.0);
+    config::RequireNonNegative("report.fragments.max_size_ratio", max_size_ratio);
   }
 };
 

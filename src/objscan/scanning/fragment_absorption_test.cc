@@ -75,10 +75,7 @@ TEST_F(FragmentAbsorptionTest, PieceOnTheHostsModelJoinsItANeighbourDoesNot) {
   EXPECT_EQ(host, (std::vector<int>{0, 0, 2}));
 }
 
-TEST_F(FragmentAbsorptionTest, DisabledOrUnsureHostOrLargeFragmentKeepsEverythingApart) {
-  FragmentAbsorptionOptions off;
-  off.enabled = false;
-  EXPECT_EQ(AbsorbExplainedFragments(objects_, off), (std::vector<int>{0, 1, 2}));
+TEST_F(FragmentAbsorptionTest, UnsureHostOrLargeFragmentKeepsEverythingApart) {
   auto unsure = objects_;
   unsure[0].objectness = 0.7;  // below min_host_objectness
   EXPECT_EQ(AbsorbExplainedFragments(unsure, FragmentAbsorptionOptions()), (std::vector<int>{0, 1, 2}));

@@ -6,7 +6,6 @@ const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const se
                                                  const recognition::ObjectExtent& extent, bool in_wall_opening,
                                                  const recognition::CategoryExtents& extents,
                                                  const recognition::SizePlausibilityOptions& options) {
-  if (!options.enabled || !options.relabel) return nullptr;
   const segmentation::ModelMatch* best = nullptr;
   for (const auto& m : matches.models) {
     if (m.category == taken || m.objectness < options.relabel_min_objectness) continue;
@@ -22,14 +21,6 @@ std::optional<world::Category> ModelLabel(const std::optional<world::Category>& 
                                           const segmentation::ModelMatch* best, double min_objectness) {
   if (best != nullptr && best->objectness >= min_objectness) return best->category;
   return graph_cut;
-}
-
-void UnlabelSmallObjects(int min_elements, std::vector<ObjectRecord>* objects) {
-  for (ObjectRecord& o : *objects) {
-    if (!o.category || o.points >= min_elements) continue;
-    o.small_rejected_category = o.category;
-    o.category.reset();
-  }
 }
 
 }  // namespace objscan::scanning

@@ -17,13 +17,13 @@ namespace objscan::scanning {
 // among those of another category with objectness >= options.relabel_min_objectness whose extent
 // range admits `extent`, windows only when `in_wall_opening`, never a curtain: a curtain hangs over a
 // window, and the scanner's curtain check names those (one that hangs over none is a guess). Null
-// when none qualifies or when options.relabel (or options.enabled) is off.
+// when none qualifies.
 const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const segmentation::MatchResult& matches,
                                                  const recognition::ObjectExtent& extent, bool in_wall_opening,
                                                  const recognition::CategoryExtents& extents,
                                                  const recognition::SizePlausibilityOptions& options);
 
-// The label an unfinished object is reported with (scanner.model_label_min_objectness): its best
+// The label an unfinished object is reported with (report.model_label_min_objectness, report rule model_label): its best
 // full model's category when that model's objectness reaches `min_objectness`, else the graph-cut
 // label (nullopt: "none"). The graph cut votes with the components' matches, which include parts and
 // views of models (a monitor's screen matches a shelf board); the best full model is fitted to the
@@ -31,9 +31,5 @@ const segmentation::ModelMatch* ReplacementLabel(world::Category taken, const se
 std::optional<world::Category> ModelLabel(const std::optional<world::Category>& graph_cut,
                                           const segmentation::ModelMatch* best, double min_objectness);
 
-// Beyond the paper (scanner.min_reported_elements): every labelled object of fewer than
-// `min_elements` map elements (ObjectRecord::points) loses its label, which small_rejected_category
-// keeps. 0 = off.
-void UnlabelSmallObjects(int min_elements, std::vector<ObjectRecord>* objects);
 
 }  // namespace objscan::scanning

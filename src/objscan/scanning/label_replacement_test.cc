@@ -33,7 +33,6 @@ recognition::SizePlausibilityOptions Options() {
   recognition::SizePlausibilityOptions options;
   options.min_ratio = 0.8;
   options.max_ratio = 1.2;
-  options.relabel = true;
   options.relabel_min_objectness = 0.9;
   return options;
 }
@@ -92,15 +91,7 @@ TEST(ReplacementLabelTest, NeverACurtain) {
   EXPECT_EQ(r->category, Category::kShelves);
 }
 
-TEST(ReplacementLabelTest, OffMeansNoReplacement) {
-  segmentation::MatchResult matches;
-  matches.models = {Match(Category::kMonitor, 0.99)};
-  recognition::SizePlausibilityOptions off = Options();
-  off.relabel = false;
-  EXPECT_EQ(ReplacementLabel(Category::kShelves, matches, kMonitorSized, false, Extents(), off), nullptr);
-  off = Options();
-  off.enabled = false;
-  EXPECT_EQ(ReplacementLabel(Category::kShelves, matches, kMonitorSized, false, Extents(), off), nullptr);
+TEST(ReplacementLabelTest, NoMatchesNoReplacement) {
   EXPECT_EQ(ReplacementLabel(Category::kShelves, segmentation::MatchResult{}, kMonitorSized, false, Extents(),
                              Options()),
             nullptr);
@@ -125,32 +116,6 @@ TEST(ModelLabelTest, AConfidentBestModelNamesTheObject) {
   EXPECT_EQ(ModelLabel(std::nullopt, &monitor, 0.95), std::nullopt);
   EXPECT_EQ(ModelLabel(Category::kShelves, nullptr, 0.0), Category::kShelves);
   EXPECT_EQ(ModelLabel(Category::kShelves, &monitor, 1.0), Category::kShelves);
-}
-
-TEST(UnlabelSmallObjectsTest, LabelledObjectsUnderTheMinimumLoseTheirLabel) {
-  const auto object = [](std::optional<Category> category, int points) {
-    ObjectRecord o;
-    o.category = category;
-    o.points = points;
-    return o;
-  };
-  std::vector<ObjectRecord> objects = {object(Category::kWindow, 49), object(Category::kLamp, 499),
-                                       object(Category::kLamp, 500), object(std::nullopt, 10),
-                                       object(Category::kBed, 60000)};
-  UnlabelSmallObjects(500, &objects);
-  EXPECT_FALSE(objects[0].category.has_value());
-  EXPECT_EQ(objects[0].small_rejected_category, Category::kWindow);
-  EXPECT_FALSE(objects[1].category.has_value());
-  EXPECT_EQ(objects[1].small_rejected_category, Category::kLamp);
-  EXPECT_EQ(objects[2].category, Category::kLamp);  // at the minimum: kept
-  EXPECT_FALSE(objects[2].small_rejected_category.has_value());
-  EXPECT_FALSE(objects[3].category.has_value());  // unlabelled stays unlabelled, nothing rejected
-  EXPECT_FALSE(objects[3].small_rejected_category.has_value());
-  EXPECT_EQ(objects[4].category, Category::kBed);
-  // 0 = off: every label stays.
-  std::vector<ObjectRecord> off = {object(Category::kWindow, 1)};
-  UnlabelSmallObjects(0, &off);
-  EXPECT_EQ(off[0].category, Category::kWindow);
 }
 
 }  // namespace

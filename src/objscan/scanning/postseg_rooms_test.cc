@@ -45,6 +45,7 @@
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/segmentation/segmentation_quality.h"
+#include "objscan/eval/ground_truth_votes.h"
 #include "objscan/sim/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
 #include "objscan/sim/navigator.h"
@@ -95,6 +96,7 @@ class MemoMatcher : public ComponentMatcher {
 struct ScannedRoom {
   world::Scene scene;
   mapping::SurfaceMap map;
+  eval::GroundTruthVotes votes;  // each element's ground-truth instance
   segmentation::IncrementalSegmenter segmenter;
   std::set<std::int32_t> structural_instances;
 };
@@ -140,6 +142,7 @@ std::unique_ptr<ScannedRoom> ScanRoom(const std::string& category, std::uint64_t
   for (const geometry::Pose3& T : RingViews(room->scene)) {
     const sim::DepthFrame frame = camera.Render(T, &rng);
     room->map.Integrate(frame, &association);
+    room->votes.Observe(frame, association);
     room->segmenter.Update(frame, association, &room->map);
     detector.Update(&room->map);
   }
@@ -163,7 +166,7 @@ RandIndices MeasureRandIndex(const ScannedRoom& room, const segmentation::PostSe
   std::vector<std::int32_t> pre, post, truth;
   for (std::size_t e = 0; e < room.map.size(); ++e) {
     const std::int32_t label = room.map.label(e);
-    const std::int32_t g = room.map.gt_instance(e);
+    const std::int32_t g = room.votes.Instance(e);
     if (label <= 0 || room.map.structure(e) != mapping::Structure::kNone) continue;
     if (g == world::kNoInstance || room.structural_instances.count(g)) continue;
     pre.push_back(label);
@@ -184,7 +187,7 @@ std::map<std::int32_t, std::pair<std::int32_t, double>> MajorityInstance(const S
   std::map<std::int32_t, std::map<std::int32_t, int>> counts;
   for (std::size_t e = 0; e < room.map.size(); ++e) {
     if (room.map.label(e) <= 0 || room.map.structure(e) != mapping::Structure::kNone) continue;
-    ++counts[room.map.label(e)][room.map.gt_instance(e)];
+    ++counts[room.map.label(e)][room.votes.Instance(e)];
   }
   std::map<std::int32_t, std::pair<std::int32_t, double>> out;
   for (const auto& [label, c] : counts) {

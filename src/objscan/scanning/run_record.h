@@ -21,6 +21,17 @@ struct NbvCandidateRecord {
   double gain = 0.0;
 };
 
+// Compute time per stage of the loop (navigate_sim: the simulated robot's driving time).
+struct StageTimes {
+  double sense = 0, fuse = 0, segment = 0, recognize = 0, nbo = 0, nbv = 0, navigate_sim = 0;
+
+  StageTimes& operator+=(const StageTimes& o) {
+    sense += o.sense, fuse += o.fuse, segment += o.segment, recognize += o.recognize;
+    nbo += o.nbo, nbv += o.nbv, navigate_sim += o.navigate_sim;
+    return *this;
+  }
+};
+
 struct StepRecord {
   int index = 0;
   std::string action;       // "nbo" (new object of interest), "nbv" (same one), "frontier" (exploration)
@@ -30,7 +41,8 @@ struct StepRecord {
   int views = 0;            // frames taken in this step
   geometry::Pose3 T_world_camera = geometry::Pose3::Identity();  // last camera pose of the step
   double travel_m = 0.0;    // base travel of this step
-  std::map<std::string, double> timing_ms;  // sense, fuse, segment, recognize, nbo, nbv, navigate_sim(s*1000)
+  StageTimes timing_ms;     // per stage, milliseconds
+  double wall_ms = 0.0;     // the whole step
   std::vector<NbvCandidateRecord> nbv_candidates;
   int num_components = 0;
   int num_objects = 0;
@@ -48,27 +60,22 @@ struct ObjectAlternative {
   double objectness = 0.0;
 };
 
+// One change a report rule (scanning/report/) made to an object, in the order they were made.
+struct LabelChange {
+  std::string rule;    // the rule's name in report.rules
+  std::string action;  // "relabel" (label only), "adopt" (a model's label, model and pose), "take" (the
+                       // label goes), "reopen" (a completed object reported unfinished), "join" (an
+                       // object became part of this one)
+  std::optional<world::Category> from, to;  // the label before and after (nullopt: none)
+  std::string model;   // adopt: the model taken; reopen: the model that had completed it
+  int joined_id = -1;  // join: the id of the object that joined
+};
+
 struct ObjectRecord {
   int id = -1;                                  // smallest pre-segment label of the object
   std::optional<world::Category> category;      // nullopt: unrecognized
-  // Whether the best full model's category replaced the graph-cut label, and that label
-  // (scanner.model_label_min_objectness; nullopt: "none").
-  bool model_labelled = false;
-  std::optional<world::Category> graph_cut_category;
-  // The label it had before the size check found no model of that category its size (nullopt: kept).
-  std::optional<world::Category> size_rejected_category;
-  // The label it had before it was found too small to report (scanner.min_reported_elements).
-  std::optional<world::Category> small_rejected_category;
-  // Share of its points in wall openings (when walls are known), and the label recognition gave it
-  // when that share made it a window or took its window label, or when it was too deep for the door
-  // it was labelled (scanner.wall_openings).
+  // Share of its points in wall openings (when the wall_openings rule ran and walls are known).
   std::optional<double> wall_opening_share;
-  std::optional<world::Category> wall_opening_replaced_category;
-  bool wall_opening_relabelled = false;
-  // The model that completed it, when it is reported unfinished all the same: its seen surface
-  // outgrew that model (scanner.completion_check), or the model is a door and what was seen of it is
-  // too deep for one (scanner.wall_openings.door_max_depth_m); "" otherwise.
-  std::string completion_rejected_model;
   std::string model;                            // best database model name ("" when none)
   int model_index = -1;                         // into the database's models
   double objectness = 0.0;
@@ -82,7 +89,8 @@ struct ObjectRecord {
   // The full models of M(r) at the end of the run, best first (empty for completed objects).
   std::vector<ObjectAlternative> alternatives;
   std::vector<std::int32_t> labels;             // its pre-segment labels
-  int gt_instance = -1;                         // majority ground-truth instance (evaluation only)
+  std::vector<LabelChange> label_changes;       // what the report rules changed, in order
+  int gt_instance = -1;                         // majority ground-truth instance (set by eval only)
 };
 
 struct TrajectorySample {
@@ -93,8 +101,9 @@ struct TrajectorySample {
   int step = 0;
 };
 
-struct TimingTotals {
-  double total = 0, sense = 0, fuse = 0, segment = 0, recognize = 0, nbo = 0, nbv = 0, navigate_sim = 0;
+// Seconds per stage over the run, and the whole run's compute time.
+struct TimingTotals : StageTimes {
+  double total = 0;
 };
 
 // What the robot took for the room's structure at the end of the run (mapping/planes.h).

@@ -19,11 +19,9 @@
 #include "objscan/planning/next_best_view.h"
 #include "objscan/recognition/component_matcher.h"
 #include "objscan/recognition/recognizer.h"
-#include "objscan/scanning/completion_check.h"
 #include "objscan/scanning/coverage_views.h"
-#include "objscan/scanning/label_replacement.h"
-#include "objscan/scanning/size_regrouping.h"
-#include "objscan/scanning/wall_openings.h"
+#include "objscan/scanning/report/report_pipeline.h"
+#include "objscan/scanning/report/report_rules.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/sim/depth_camera.h"
@@ -220,16 +218,16 @@ struct Scanner::State {
   void TakeView(const geometry::Pose3& T_world_camera, StepRecord* step) {
     Stopwatch w;
     const sim::DepthFrame frame = camera.Render(T_world_camera, &rng);
-    Charge(step, "sense", w.ElapsedMs());
+    Charge(step, &StageTimes::sense, w.ElapsedMs());
     w.Restart();
     mapping::FrameAssociation association;
     surface.Integrate(frame, &association);
     occupancy.Integrate(frame);
-    Charge(step, "fuse", w.ElapsedMs());
+    Charge(step, &StageTimes::fuse, w.ElapsedMs());
     w.Restart();
     segmenter.Update(frame, association, &surface);
-    Charge(step, "segment", w.ElapsedMs());
-    if (observer) observer(frame);
+    Charge(step, &StageTimes::segment, w.ElapsedMs());
+    if (observer) observer(frame, association);
     ++step->views;
     ++record.views;
     step->T_world_camera = T_world_camera;
@@ -237,7 +235,7 @@ struct Scanner::State {
     map_changed = true;
   }
 
-  void Charge(StepRecord* step, const char* stage, double ms) { step->timing_ms[stage] += ms; }
+  void Charge(StepRecord* step, double StageTimes::*stage, double ms) { step->timing_ms.*stage += ms; }
 
   void AddTrajectorySample(int step_index, bool view) {
     TrajectorySample s;
@@ -287,7 +285,7 @@ struct Scanner::State {
     visited.push_back(robot.base().xy_m);
     AddPathSamples(plan.path, T_before.translation().z(), before_s, robot.travel().time_s, step->index);
     step->travel_m += robot.travel().distance_m - before_m;
-    step->timing_ms["navigate_sim"] += 1e3 * (robot.travel().time_s - before_s);
+    step->timing_ms.navigate_sim += 1e3 * (robot.travel().time_s - before_s);
     TakeView(plan.T_world_camera, step);
     return true;
   }
@@ -310,7 +308,7 @@ struct Scanner::State {
     plan.time_s = config.robot.arm_move_s;
     const double before_s = robot.travel().time_s;
     robot.Execute(plan);
-    step->timing_ms["navigate_sim"] += 1e3 * (robot.travel().time_s - before_s);
+    step->timing_ms.navigate_sim += 1e3 * (robot.travel().time_s - before_s);
     TakeView(plan.T_world_camera, step);
   }
 
@@ -331,7 +329,7 @@ struct Scanner::State {
     UpdateStructure();
     const segmentation::ComponentGraph& graph = segmenter.Components(&surface);
     graph_cache = &graph;
-    Charge(step, "segment", w.ElapsedMs());
+    Charge(step, &StageTimes::segment, w.ElapsedMs());
     w.Restart();
     matcher.SetComponents(&graph);
     if (config.recognition.space_weight > 0.0 || config.recognition.structure_completeness) {
@@ -365,7 +363,7 @@ struct Scanner::State {
       if (included.count(a) && included.count(b)) input.edges.emplace_back(a, b);
     }
     post = post_segmenter.Update(input);
-    Charge(step, "recognize", w.ElapsedMs());
+    Charge(step, &StageTimes::recognize, w.ElapsedMs());
     step->num_components = static_cast<int>(input.components.size());
     step->num_objects = static_cast<int>(post.objects.size());
     step->component_queries += post.stats.component_queries;
@@ -403,15 +401,6 @@ struct Scanner::State {
     return model_id >= 0 ? database.models()[static_cast<std::size_t>(model_id)].name : std::string();
   }
 
-  // The object is reported as `m`: its category, model, pose and objectness.
-  void Adopt(const segmentation::ModelMatch& m, ObjectRecord* o) const {
-    o->category = m.category;
-    o->model_index = m.model_id;
-    o->model = ModelName(m.model_id);
-    o->T_world_model = m.T_world_model;
-    o->objectness = m.objectness;
-  }
-
   // m's database entry; nullptr for a match without one.
   const recognition::DatabaseEntry* EntryOf(const segmentation::ModelMatch& m) const {
     if (m.entry_id < 0 || m.entry_id >= static_cast<int>(database.entries().size())) return nullptr;
@@ -436,31 +425,6 @@ struct Scanner::State {
       occluders_stale = false;
     }
     return occluders;
-  }
-
-  // Fragment absorption's view of an object with a best model: the model's points and pose.
-  void SetModel(const segmentation::ModelMatch& m, FragmentCandidate* f) const {
-    const recognition::DatabaseEntry* entry = EntryOf(m);
-    if (entry == nullptr) return;
-    f->model_points = &entry->points;
-    f->T_world_model = m.T_world_model;
-  }
-
-  // An unfinished object with `best` as its best full model: its model and pose, and its label
-  // (ModelLabel: the model's category when confident, else the one it has, kept as
-  // graph_cut_category when replaced). Its objectness is the caller's.
-  void ReportBestModel(const segmentation::ModelMatch& best, ObjectRecord* o, FragmentCandidate* f) const {
-    const std::optional<world::Category> label =
-        ModelLabel(o->category, &best, config.scanner.model_label_min_objectness);
-    if (label != o->category) {
-      o->model_labelled = true;
-      o->graph_cut_category = o->category;
-      o->category = label;
-    }
-    o->model_index = best.model_id;
-    o->model = ModelName(best.model_id);
-    o->T_world_model = best.T_world_model;
-    SetModel(best, f);
   }
 
   void UpdateStructure() {
@@ -568,7 +532,7 @@ struct Scanner::State {
       if (candidates.empty()) return false;
       Stopwatch w;
       const planning::NboResult nbo = planning::SelectNextBestObject(candidates, view, current_ooi, config.nbo);
-      Charge(step, "nbo", w.ElapsedMs());
+      Charge(step, &StageTimes::nbo, w.ElapsedMs());
       for (int id : nbo.budget_spent_ids) given_up.insert(id);
       if (nbo.status != planning::NboStatus::kOk) return false;
       int k = -1;
@@ -613,7 +577,7 @@ struct Scanner::State {
       MapViewValidator validator(occupancy, robot, navigator, std::max(config.scanner.line_of_sight_skip_m, radius),
                                  earlier, config.scanner.min_view_separation_m, config.scanner.min_view_separation_deg);
       const planning::NextBestViewResult result = nbv.Plan(input, &validator);
-      Charge(step, "nbv", w.ElapsedMs());
+      Charge(step, &StageTimes::nbv, w.ElapsedMs());
       for (const auto& c : result.candidates) {
         step->nbv_candidates.push_back({c.T_world_camera, planning::ToString(c.validity), c.gain.gain});
       }
@@ -730,7 +694,7 @@ struct Scanner::State {
                                  std::max(config.scanner.line_of_sight_skip_m, 0.5 * box.Diagonal()), earlier,
                                  config.scanner.min_view_separation_m, config.scanner.min_view_separation_deg);
       const planning::NextBestViewResult result = coverage_nbv.Plan(input, &validator);
-      Charge(step, "nbv", w.ElapsedMs());
+      Charge(step, &StageTimes::nbv, w.ElapsedMs());
       if (result.status != planning::NbvStatus::kOk ||
           result.candidates[result.best_index].gain.gain < options.min_unseen_voxels) {
         continue;
@@ -813,6 +777,138 @@ struct Scanner::State {
     map_changed = false;
   }
 
+  // --- the end of the run -------------------------------------------------------------------------
+  // What the last views showed.
+  void FinalAnalysis() {
+    StepRecord final_step;
+    RefreshNavigation();
+    Analyze(&final_step);
+  }
+
+  // The floor and walls the robot took for the room's structure.
+  void RecordStructure() {
+    record.structure = StructureRecord();
+    if (structure.has_floor) record.structure.floor_height_m = structure.floor_height_m;
+    for (const mapping::WallPlane& w : structure.walls) {
+      record.structure.walls.push_back({w.normal.x(), w.normal.y(), w.offset_m, w.span_min_m, w.span_max_m, w.z_min_m,
+                                        w.z_max_m, w.area_m2});
+    }
+  }
+
+  // The report stage's view of recognition, the map and the database (report/report_context.h).
+  class Sources : public ReportSources {
+   public:
+    explicit Sources(State& s) : s_(s) {}
+    segmentation::MatchResult MatchFullModels(const std::vector<std::int32_t>& labels) override {
+      return s_.matcher.Match(labels, segmentation::MatchScope::kFullModels);
+    }
+    std::optional<segmentation::ModelMatch> BestOfCategory(const std::vector<std::int32_t>& labels,
+                                                           world::Category category) override {
+      return s_.matcher.BestOfCategory(labels, category);
+    }
+    std::vector<Eigen::Vector3f> ComponentPoints(const std::vector<std::int32_t>& labels) const override {
+      return s_.ComponentPoints(labels);
+    }
+    std::size_t ElementCount(const std::vector<std::int32_t>& labels) const override {
+      const std::set<std::int32_t> wanted(labels.begin(), labels.end());
+      std::size_t n = 0;
+      for (std::size_t e = 0; e < s_.surface.size(); ++e) {
+        n += s_.surface.structure(e) == mapping::Structure::kNone && wanted.count(s_.surface.label(e)) > 0;
+      }
+      return n;
+    }
+    std::string ModelName(int model_id) const override { return s_.ModelName(model_id); }
+    const std::vector<Eigen::Vector3f>* EntryPoints(int entry_id) const override {
+      if (entry_id < 0 || entry_id >= static_cast<int>(s_.database.entries().size())) return nullptr;
+      return &s_.database.entries()[static_cast<std::size_t>(entry_id)].points;
+    }
+
+   private:
+    State& s_;
+  };
+
+  // The objects the loop left: completed objects (their model) and the post-segmented objects large
+  // enough to be scanned, each unfinished one with its best full model.
+  void CollectObjects(ReportedObjects* objects) const {
+    for (const auto& c : completed) {
+      ReportedObject r;
+      ObjectRecord& o = r.record;
+      o.id = c.id;
+      o.category = c.model.category;
+      o.model_index = c.model.model_id;
+      o.model = ModelName(c.model.model_id);
+      o.objectness = c.objectness;
+      o.complete = true;
+      o.T_world_model = c.model.T_world_model;
+      o.labels = c.labels;
+      r.model_entry = c.model.entry_id;
+      for (auto l : c.labels) {
+        if (const segmentation::Component* comp = segmenter_graph().Find(l)) r.num_elements += comp->points.size();
+      }
+      objects->Add(std::move(r));
+    }
+    for (int k : this->objects) {
+      const auto& p = post.objects[k];
+      ReportedObject r;
+      geometry::Aabb3 bounds;
+      double area_m2 = 0.0;
+      std::size_t num_points = 0;
+      ObjectGeometry(p, &r.points_world, &bounds, &area_m2, &num_points);
+      // Fragments too small to be scanned as objects are reported as unrecognized surface.
+      if (static_cast<int>(num_points) < config.scanner.min_object_elements) continue;
+      ObjectRecord& o = r.record;
+      o.id = p.component_ids.front();
+      o.category = p.category;
+      if (const auto* best = p.best_model()) {
+        o.model_index = best->model_id;
+        o.model = ModelName(best->model_id);
+        o.T_world_model = best->T_world_model;
+        r.model_entry = best->entry_id;
+      }
+      o.objectness = p.objectness;
+      o.given_up = given_up.count(o.id) > 0;
+      o.labels = p.component_ids;
+      r.full_matches = &p.full_model_matches;
+      objects->Add(std::move(r));
+    }
+  }
+
+  // The object list of the run: the loop's objects after the report rules of `options`.
+  std::vector<ObjectRecord> ReportObjects(const ReportOptions& options) {
+    ReportedObjects objects;
+    CollectObjects(&objects);
+    const ReportPipeline pipeline(options);
+    // Measured here, not at start-up: only the end of a run needs the models' sizes.
+    const recognition::CategoryExtents category_extents = pipeline.needs_category_extents()
+                                                              ? recognition::CategoryExtents::FromDatabase(database)
+                                                              : recognition::CategoryExtents();
+    Sources sources(*this);
+    ReportContext context;
+    context.sources = &sources;
+    context.structure = &structure;
+    context.category_extents = &category_extents;
+    pipeline.Run(context, &objects);
+    // What was seen of each object, and what else recognition considered.
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      if (!objects[i].reported()) continue;
+      ObjectRecord& o = objects.mutable_object(i).record;
+      const recognition::ObjectExtent extent = MeasureReportedExtent(context, objects, i, options.size_check);
+      o.height_m = extent.height_m;
+      o.footprint_diagonal_m = extent.footprint_diagonal_m;
+      o.points = static_cast<int>(sources.ElementCount(o.labels));
+      if (objects[i].full_matches == nullptr) continue;
+      for (const auto& m : objects[i].full_matches->models) {
+        o.alternatives.push_back({m.category, ModelName(m.model_id), m.objectness});
+      }
+    }
+    std::vector<ObjectRecord> records = objects.TakeReportedRecords();
+    // An object with no element left outside the structure is gone from the map: typically a completed
+    // object whose pieces all became wall later (the object that now holds its surface reports it).
+    records.erase(std::remove_if(records.begin(), records.end(), [](const ObjectRecord& o) { return o.points == 0; }),
+                  records.end());
+    return records;
+  }
+
   const SystemConfig config;
   const world::Scene& scene;
   const recognition::ModelDatabase& database;
@@ -861,6 +957,7 @@ struct Scanner::State {
   bool occluders_stale = true;
   bool map_changed = true;
   int current_ooi = -1;
+  bool finished = false;  // Run() has reported the objects
   Stopwatch wall;
 };
 
@@ -948,17 +1045,13 @@ bool Scanner::Step() {
     }
   }
   rec.travel_m = s.robot.travel().distance_m;
-  for (const auto& [stage, ms] : step.timing_ms) {
-    const double sec = ms / 1e3;
-    if (stage == "sense") rec.timing_s.sense += sec;
-    if (stage == "fuse") rec.timing_s.fuse += sec;
-    if (stage == "segment") rec.timing_s.segment += sec;
-    if (stage == "recognize") rec.timing_s.recognize += sec;
-    if (stage == "nbo") rec.timing_s.nbo += sec;
-    if (stage == "nbv") rec.timing_s.nbv += sec;
-    if (stage == "navigate_sim") rec.timing_s.navigate_sim += sec;
+  StageTimes seconds = step.timing_ms;
+  for (double* t : {&seconds.sense, &seconds.fuse, &seconds.segment, &seconds.recognize, &seconds.nbo, &seconds.nbv,
+                    &seconds.navigate_sim}) {
+    *t /= 1e3;
   }
-  step.timing_ms["wall"] = step_wall.ElapsedMs();
+  rec.timing_s += seconds;
+  step.wall_ms = step_wall.ElapsedMs();
   rec.steps.push_back(std::move(step));
   return rec.terminated == Termination::kRunning;
 }
@@ -970,386 +1063,19 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
                    "step " + std::to_string(s.record.steps.size()) + ", " + std::to_string(s.completed.size()) +
                        " objects complete");
   }
-  // Final analysis of what the last views showed, and the object list.
-  StepRecord final_step;
-  s.RefreshNavigation();
-  s.Analyze(&final_step);
-  RunRecord& rec = s.record;
-  rec.structure = StructureRecord();
-  if (s.structure.has_floor) rec.structure.floor_height_m = s.structure.floor_height_m;
-  for (const mapping::WallPlane& w : s.structure.walls) {
-    rec.structure.walls.push_back({w.normal.x(), w.normal.y(), w.offset_m, w.span_min_m, w.span_max_m, w.z_min_m,
-                                   w.z_max_m, w.area_m2});
+  s.FinalAnalysis();
+  s.RecordStructure();
+  s.record.objects = s.ReportObjects(s.config.report);
+  s.finished = true;
+  s.record.timing_s.total = s.wall.ElapsedSeconds();
+  return s.record;
+}
+
+std::vector<ObjectRecord> Scanner::ReportWith(const ReportOptions& options) {
+  if (!state_->finished) {
+    throw std::logic_error("Scanner::ReportWith: call Run() first");
   }
-  rec.objects.clear();
-  // Fragment absorption candidates, parallel to rec.objects.
-  std::vector<FragmentCandidate> candidates;
-  // The full-model matches of each object (null for completed ones, which are their model; those
-  // reopened below own theirs in reopened_matches).
-  std::vector<const segmentation::MatchResult*> full_matches;
-  // Full-model matches of completed objects reported unfinished (completion_check.h).
-  std::vector<std::unique_ptr<segmentation::MatchResult>> reopened_matches;
-  const CompletionCheckOptions& completion_check = s.config.scanner.completion_check;
-  for (const auto& c : s.completed) {
-    ObjectRecord o;
-    o.id = c.id;
-    o.category = c.model.category;
-    o.model_index = c.model.model_id;
-    o.model = s.ModelName(c.model.model_id);
-    o.objectness = c.objectness;
-    o.complete = true;
-    o.T_world_model = c.model.T_world_model;
-    o.labels = c.labels;
-    FragmentCandidate f;
-    const recognition::DatabaseEntry* entry = s.EntryOf(c.model);
-    const bool check_outgrown = completion_check.max_outside_share >= 0.0 && entry != nullptr;
-    // A completed door too deep to be one (wall_openings.h, TooDeepForADoor, false when off) is
-    // reported unfinished; its door label is taken below.
-    const bool check_door = c.model.category == world::Category::kDoor;
-    if (check_outgrown || check_door) {
-      std::vector<Eigen::Vector3f> seen = s.ComponentPoints(c.labels);
-      bool reopen = check_door && TooDeepForADoor(seen, s.config.scanner.wall_openings);
-      if (!reopen && check_outgrown) {
-        reopen = ShareOutsideModelBox(seen, entry->points, c.model.T_world_model, completion_check.margin_m) >
-                 completion_check.max_outside_share;
-      }
-      if (reopen) {
-        // Recognized again as a whole, and labelled as any unfinished object: its best full model's
-        // category when confident, else the label it had.
-        o.complete = false;
-        o.completion_rejected_model = o.model;
-        auto matches = std::make_unique<segmentation::MatchResult>(
-            s.matcher.Match(c.labels, segmentation::MatchScope::kFullModels));
-        if (!matches->models.empty()) {
-          s.ReportBestModel(matches->models.front(), &o, &f);
-          o.objectness = matches->models.front().objectness;
-        }
-        f.points_world = std::move(seen);
-        f.objectness = o.objectness;
-        rec.objects.push_back(o);
-        candidates.push_back(std::move(f));
-        full_matches.push_back(matches.get());
-        reopened_matches.push_back(std::move(matches));
-        continue;
-      }
-    }
-    rec.objects.push_back(o);
-    for (auto l : c.labels) {
-      if (const segmentation::Component* comp = s.segmenter_graph().Find(l)) f.num_points += comp->points.size();
-    }
-    f.objectness = c.objectness;
-    f.may_be_absorbed = false;
-    s.SetModel(c.model, &f);
-    candidates.push_back(std::move(f));
-    full_matches.push_back(nullptr);
-  }
-  for (int k : s.objects) {
-    const auto& r = s.post.objects[k];
-    FragmentCandidate f;
-    geometry::Aabb3 bounds;
-    double area_m2 = 0.0;
-    std::size_t num_points = 0;
-    s.ObjectGeometry(r, &f.points_world, &bounds, &area_m2, &num_points);
-    // Fragments too small to be scanned as objects are reported as unrecognized surface.
-    if (static_cast<int>(num_points) < s.config.scanner.min_object_elements) continue;
-    ObjectRecord o;
-    o.id = r.component_ids.front();
-    o.category = r.category;
-    if (const auto* best = r.best_model()) s.ReportBestModel(*best, &o, &f);
-    o.objectness = r.objectness;
-    o.given_up = s.given_up.count(o.id) > 0;
-    o.labels = r.component_ids;
-    rec.objects.push_back(o);
-    f.objectness = r.objectness;
-    candidates.push_back(std::move(f));
-    full_matches.push_back(&r.full_model_matches);
-  }
-  // Object `from` is reported as part of object `into`: its labels join into's (kept ascending).
-  const auto join_labels = [&rec](std::size_t from, int into) {
-    auto& labels = rec.objects[static_cast<std::size_t>(into)].labels;
-    labels.insert(labels.end(), rec.objects[from].labels.begin(), rec.objects[from].labels.end());
-    std::sort(labels.begin(), labels.end());
-  };
-  // Pieces lying on a recognized neighbour's model join it (their labels, not their category).
-  std::vector<int> host = AbsorbExplainedFragments(candidates, s.config.scanner.fragments);
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    if (host[i] != static_cast<int>(i)) join_labels(i, host[i]);
-  }
-  // Pieces too small for their label join a neighbour whose category the union fits
-  // (size_regrouping.h); then a label no model of the object's size has goes (and may be replaced
-  // below, label_replacement.h).
-  std::vector<std::vector<Eigen::Vector3f>> object_points(host.size());
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    auto& into = object_points[static_cast<std::size_t>(host[i])];
-    into.insert(into.end(), candidates[i].points_world.begin(), candidates[i].points_world.end());
-  }
-  const recognition::SizePlausibilityOptions& size_check = s.config.scanner.size_check;
-  // Measured here, not at start-up: only the end of a run needs the models' sizes.
-  const recognition::CategoryExtents category_extents =
-      size_check.enabled ? recognition::CategoryExtents::FromDatabase(s.database) : recognition::CategoryExtents();
-  // The objects that host themselves as regrouping candidates, their points moved out of
-  // object_points (the regrouping hands them back); completed ones are fixed and unlabelled there.
-  const auto take_pieces = [&]() {
-    std::vector<RegroupCandidate> pieces(host.size());
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      if (host[i] != static_cast<int>(i)) continue;
-      pieces[i].points_world = std::move(object_points[i]);
-      pieces[i].category = rec.objects[i].complete ? std::nullopt : rec.objects[i].category;
-      pieces[i].fixed = rec.objects[i].complete;
-    }
-    return pieces;
-  };
-  if (size_check.enabled && size_check.regroup) {
-    // Absorbed objects hold no points in object_points (they host nothing), so they touch nothing.
-    std::vector<std::pair<int, int>> adjacency = ObjectsWithinDistance(object_points, size_check.adjacency_m);
-    if (size_check.support_gap_m >= 0.0) {
-      const auto stacked = ObjectsStandingUnder(object_points, size_check.support_gap_m, size_check.adjacency_m);
-      adjacency.insert(adjacency.end(), stacked.begin(), stacked.end());
-      std::sort(adjacency.begin(), adjacency.end());
-      adjacency.erase(std::unique(adjacency.begin(), adjacency.end()), adjacency.end());
-    }
-    std::vector<RegroupCandidate> pieces = take_pieces();
-    // The categories a union of objects is recognized as, best first.
-    const auto recognize = [&](const std::vector<int>& members) {
-      std::vector<std::int32_t> labels;
-      for (int m : members) {
-        const auto& l = rec.objects[static_cast<std::size_t>(m)].labels;
-        labels.insert(labels.end(), l.begin(), l.end());
-      }
-      std::sort(labels.begin(), labels.end());
-      labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-      std::vector<world::Category> categories;
-      for (const auto& m : s.matcher.Match(labels, segmentation::MatchScope::kFullModels).models) {
-        categories.push_back(m.category);
-      }
-      return categories;
-    };
-    RegroupResult regroup = RegroupImplausibleFragments(pieces, adjacency, category_extents, size_check, recognize);
-    object_points = std::move(regroup.points_world);
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      if (host[i] != static_cast<int>(i)) continue;
-      const int into = regroup.host[i];
-      if (into == static_cast<int>(i)) {
-        if (!rec.objects[i].complete) rec.objects[i].category = regroup.category[i];
-        continue;
-      }
-      join_labels(i, into);
-      host[i] = into;
-    }
-  }
-  if (size_check.enabled && size_check.join_stacked && size_check.support_gap_m >= 0.0) {
-    RegroupResult stacked = JoinStackedPieces(take_pieces(), size_check.support_gap_m, size_check.adjacency_m,
-                                              category_extents, size_check);
-    object_points = std::move(stacked.points_world);
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      const int into = stacked.host[i];
-      if (host[i] != static_cast<int>(i) || into == static_cast<int>(i)) continue;
-      join_labels(i, into);
-      host[i] = into;
-    }
-  }
-  // The size of what was seen of each object (the size check below compares it with the models').
-  std::vector<recognition::ObjectExtent> extents(host.size());
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    if (host[i] != static_cast<int>(i)) continue;
-    ObjectRecord& o = rec.objects[i];
-    const std::vector<Eigen::Vector3f> measured =
-        PointsAwayFromWalls(object_points[i], s.structure, size_check.wall_margin_m);
-    extents[i] = recognition::MeasureObjectExtent(measured, size_check);
-    o.height_m = extents[i].height_m;
-    o.footprint_diagonal_m = extents[i].footprint_diagonal_m;
-    if (full_matches[i] == nullptr) continue;
-    for (const auto& m : full_matches[i]->models) o.alternatives.push_back({m.category, s.ModelName(m.model_id), m.objectness});
-  }
-  // The surface the robot saw of object i: a completed object stands for its model, so its
-  // components' points (gathered once; again when its labels grow); an unfinished one's points as
-  // grouped above.
-  std::vector<std::optional<std::vector<Eigen::Vector3f>>> completed_seen(host.size());
-  const auto seen_points = [&](std::size_t i) -> const std::vector<Eigen::Vector3f>& {
-    const ObjectRecord& o = rec.objects[i];
-    if (!o.complete) return object_points[i];
-    if (!completed_seen[i]) completed_seen[i] = s.ComponentPoints(o.labels);
-    return *completed_seen[i];
-  };
-  const WallOpeningOptions& openings = s.config.scanner.wall_openings;
-  // The label each check took from an object (size_check.relabel may replace it below).
-  std::vector<std::optional<world::Category>> taken(host.size());
-  // Door labels on things too deep for a door leaf go (wall_openings.h, TooDeepForADoor).
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    ObjectRecord& o = rec.objects[i];
-    if (host[i] != static_cast<int>(i) || o.complete || o.category != world::Category::kDoor) continue;
-    if (!TooDeepForADoor(seen_points(i), openings)) continue;
-    o.wall_opening_replaced_category = o.category;
-    o.wall_opening_relabelled = true;
-    taken[i] = o.category;
-    o.category.reset();
-  }
-  // Objects in wall openings are windows; window labels elsewhere go (wall_openings.h).
-  std::vector<bool> in_opening(host.size(), false);
-  for (std::size_t i = 0; openings.enabled && i < host.size(); ++i) {
-    ObjectRecord& o = rec.objects[i];
-    if (host[i] != static_cast<int>(i) || s.structure.walls.empty()) continue;
-    const bool window = o.category == world::Category::kWindow;
-    const WallOpeningResult opening = ClassifyWallOpening(seen_points(i), s.structure, window, openings);
-    o.wall_opening_share = opening.share;
-    in_opening[i] = opening.verdict == WallOpeningVerdict::kWindow;
-    if (opening.verdict == WallOpeningVerdict::kNotWindow) {
-      o.wall_opening_replaced_category = o.category;
-      o.wall_opening_relabelled = true;
-      taken[i] = o.category;
-      o.category.reset();
-    } else if (opening.verdict == WallOpeningVerdict::kWindow && !window) {
-      const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kWindow);
-      if (!best) continue;
-      o.wall_opening_replaced_category = o.category;
-      o.wall_opening_relabelled = true;
-      s.Adopt(*best, &o);
-    }
-  }
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    ObjectRecord& o = rec.objects[i];
-    if (host[i] != static_cast<int>(i) || o.complete || !o.category || !size_check.enabled) continue;
-    // A window in a wall opening keeps its label: the opening bounds it, and what the object holds
-    // beyond it are strips of the wall around the opening.
-    if (in_opening[i] && o.category == world::Category::kWindow) continue;
-    if (recognition::IsPlausibleExtent(extents[i], category_extents.Find(*o.category), size_check)) continue;
-    o.size_rejected_category = o.category;
-    taken[i] = o.category;
-    o.category.reset();
-  }
-  // Curtain labels on things that do not hang on a wall go (wall_openings.h, CurtainLabelGoes).
-  const bool curtains_must_hang =
-      openings.enabled && openings.curtain_max_distance_m >= 0.0 && openings.curtain_must_hang;
-  for (std::size_t i = 0; curtains_must_hang && i < host.size(); ++i) {
-    ObjectRecord& o = rec.objects[i];
-    if (host[i] != static_cast<int>(i) || o.category != world::Category::kCurtain) continue;
-    if (!CurtainLabelGoes(o.category, HangingExtent(seen_points(i), s.structure, openings), openings)) continue;
-    if (!o.wall_opening_relabelled) {
-      o.wall_opening_replaced_category = o.category;
-      o.wall_opening_relabelled = true;
-    }
-    taken[i] = o.category;
-    o.category.reset();
-  }
-  // A label a check took is replaced by a confident, plausible match of another category.
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    if (host[i] != static_cast<int>(i) || !taken[i] || full_matches[i] == nullptr) continue;
-    const segmentation::ModelMatch* replacement =
-        ReplacementLabel(*taken[i], *full_matches[i], extents[i], in_opening[i], category_extents, size_check);
-    if (replacement != nullptr) s.Adopt(*replacement, &rec.objects[i]);
-  }
-  // Pieces of one window are reported as one window (wall_openings.h).
-  if (openings.join_gap_m >= 0.0) {
-    std::vector<WindowPiece> pieces(host.size());
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      const ObjectRecord& o = rec.objects[i];
-      if (host[i] != static_cast<int>(i) || o.category != world::Category::kWindow) continue;
-      WindowPiece& piece = pieces[i];
-      piece.window = true;
-      piece.complete = o.complete;
-      const std::vector<Eigen::Vector3f>& seen = seen_points(i);
-      piece.opening = OpeningBounds(seen, s.structure, openings);
-      piece.num_points = seen.size();
-    }
-    const std::vector<int> joined = JoinWindowPieces(pieces, openings.join_gap_m);
-    std::vector<bool> grew(host.size(), false);
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      const int into = joined[i];
-      if (into == static_cast<int>(i)) continue;
-      join_labels(i, into);
-      completed_seen[static_cast<std::size_t>(into)].reset();
-      host[i] = into;
-      grew[static_cast<std::size_t>(into)] = true;
-    }
-    // A grown unfinished window takes the window model that fits all its pieces best.
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      ObjectRecord& o = rec.objects[i];
-      if (!grew[i] || o.complete) continue;
-      const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kWindow);
-      if (best) s.Adopt(*best, &o);
-    }
-  }
-  // A door, an unlabelled object, or a window hanging on the wall (no opening behind it), hanging
-  // over a window in an opening is a curtain (wall_openings.h).
-  if (openings.enabled && openings.curtain_max_distance_m >= 0.0) {
-    std::vector<OpeningExtent> windows;
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      const ObjectRecord& o = rec.objects[i];
-      if (host[i] != static_cast<int>(i) || o.category != world::Category::kWindow) continue;
-      // From its labels: a joined window's object_points hold only its host piece.
-      const OpeningExtent w = OpeningBounds(s.ComponentPoints(o.labels), s.structure, openings);
-      if (w.wall >= 0) windows.push_back(w);
-    }
-    // Per object, the window its curtain hangs over (-1: none), and what hosting needs of it.
-    std::vector<int> window_of(host.size(), -1);
-    std::vector<WindowPiece> panels(host.size());
-    for (std::size_t i = 0; !windows.empty() && i < host.size(); ++i) {
-      ObjectRecord& o = rec.objects[i];
-      if (host[i] != static_cast<int>(i) || in_opening[i]) continue;
-      if (!MayBeCurtain(o.category, o.wall_opening_share.value_or(0.0), openings)) continue;
-      const std::vector<Eigen::Vector3f>& seen = seen_points(i);
-      const int window = CurtainWindow(HangingExtent(seen, s.structure, openings), windows, openings);
-      if (window < 0) continue;
-      if (o.category != world::Category::kCurtain) {
-        const std::optional<segmentation::ModelMatch> best = s.matcher.BestOfCategory(o.labels, world::Category::kCurtain);
-        if (!best) continue;
-        if (!o.wall_opening_relabelled) {
-          o.wall_opening_replaced_category = o.category;
-          o.wall_opening_relabelled = true;
-        }
-        s.Adopt(*best, &o);
-      }
-      window_of[i] = window;
-      panels[i].complete = o.complete;
-      panels[i].num_points = seen.size();
-    }
-    // The panels over one window are one curtain, hosted like the pieces of a window.
-    if (openings.join_curtain_panels) {
-      const std::vector<int> joined = HostsOfGroups(window_of, panels);
-      for (std::size_t i = 0; i < host.size(); ++i) {
-        const int into = joined[i];
-        if (into == static_cast<int>(i)) continue;
-        join_labels(i, into);
-        host[i] = into;
-      }
-    }
-  }
-  std::vector<ObjectRecord> kept;
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    if (host[i] == static_cast<int>(i)) kept.push_back(std::move(rec.objects[i]));
-  }
-  rec.objects = std::move(kept);
-  // Points and majority ground-truth instance per object.
-  std::map<std::int32_t, int> object_of_label;
-  for (std::size_t i = 0; i < rec.objects.size(); ++i) {
-    for (auto l : rec.objects[i].labels) object_of_label[l] = static_cast<int>(i);
-  }
-  std::vector<std::map<std::int32_t, int>> votes(rec.objects.size());
-  for (std::size_t e = 0; e < s.surface.size(); ++e) {
-    if (s.surface.structure(e) != mapping::Structure::kNone) continue;
-    auto it = object_of_label.find(s.surface.label(e));
-    if (it == object_of_label.end()) continue;
-    ++rec.objects[it->second].points;
-    ++votes[it->second][s.surface.gt_instance(e)];
-  }
-  for (std::size_t i = 0; i < rec.objects.size(); ++i) {
-    int best = 0;
-    for (const auto& [inst, n] : votes[i]) {
-      if (n > best && inst > 0) {
-        best = n;
-        rec.objects[i].gt_instance = inst;
-      }
-    }
-  }
-  // Labelled objects too small to trust are reported as unrecognized surface.
-  UnlabelSmallObjects(s.config.scanner.min_reported_elements, &rec.objects);
-  // An object with no element left outside the structure is gone from the map: typically a completed
-  // object whose pieces all became wall later (the object that now holds its surface reports it).
-  rec.objects.erase(std::remove_if(rec.objects.begin(), rec.objects.end(),
-                                   [](const ObjectRecord& o) { return o.points == 0; }),
-                    rec.objects.end());
-  rec.timing_s.total = s.wall.ElapsedSeconds();
-  return rec;
+  return state_->ReportObjects(options);
 }
 
 void Scanner::ElementObjects(std::vector<int>* object_id, std::vector<int>* category_id) const {

@@ -16,10 +16,16 @@
 #include "objscan/sim/depth_frame.h"
 #include "objscan/world/scene.h"
 
+namespace objscan::mapping {
+struct FrameAssociation;
+}  // namespace objscan::mapping
+
 namespace objscan::scanning {
 
-// Called with every frame the robot takes (e.g. to accumulate ground-truth coverage for evaluation).
-using FrameObserver = std::function<void(const sim::DepthFrame& frame)>;
+// Called with every frame the robot takes and where the surface map fused its pixels (evaluation
+// accumulates ground-truth coverage and each map element's ground-truth instance from them; the
+// method itself never reads the frame's ground-truth channel).
+using FrameObserver = std::function<void(const sim::DepthFrame& frame, const mapping::FrameAssociation& association)>;
 class Scanner;
 // Called after every analysis of the map (post-segmentation), e.g. to score the segmentation over views.
 using AnalysisObserver = std::function<void(const Scanner& scanner)>;
@@ -43,6 +49,9 @@ class Scanner {
   const RunRecord& Run(const ProgressCallback& progress = nullptr);
 
   const RunRecord& record() const;
+  // The objects the report stage gives from the end of this run with other report options (to
+  // measure the report rules; the run's own record is unchanged). Only after Run().
+  std::vector<ObjectRecord> ReportWith(const ReportOptions& options);
   const mapping::SurfaceMap& surface_map() const;
   // Per map element: the output object id (-1 none) and category id (-1 unrecognized / structural).
   void ElementObjects(std::vector<int>* object_id, std::vector<int>* category_id) const;

@@ -3,12 +3,8 @@
 #include <string>
 
 #include "objscan/common/config.h"
-#include "objscan/recognition/category_extent.h"
-#include "objscan/scanning/completion_check.h"
 #include "objscan/scanning/coverage_views.h"
-#include "objscan/scanning/fragment_absorption.h"
 #include "objscan/scanning/map_space_evidence.h"
-#include "objscan/scanning/wall_openings.h"
 
 namespace objscan::scanning {
 
@@ -27,12 +23,6 @@ struct ScannerOptions {
   // it was last asked (a new frame touches most components a little).
   double rematch_growth_fraction = 0.15;
   int min_object_elements = 300;       // smaller objects (map elements, 1 cm) are not NBO candidates
-  // Beyond the paper: a reported object with fewer map elements than this at the end keeps no label
-  // (it is reported as unrecognized surface). Over the 60 procedural rooms of seeds 1-12, four in five
-  // labelled objects under 1000 elements were false: a piece of wall that a window or door model fits
-  // once the wall explains the rest of it (recognition.structure_completeness), a lamp's shade
-  // apart from its stand. 0 = every labelled object is reported.
-  int min_reported_elements = 500;
   // Beyond the paper: an object of interest whose objectness rose by less than stall_min_gain over
   // its last stall_views views is given up early (more views of it are not helping the recognizer).
   // stall_views = 0: the paper's behaviour (only max_views_per_object ends the scanning of an object).
@@ -60,22 +50,6 @@ struct ScannerOptions {
   // Floor and walls are searched again only when the map grew by this share since the last search;
   // in between, new elements are tagged with the known planes (0 = search every step).
   double structure_redetect_growth = 0.1;
-  // Beyond the paper: an unfinished object whose best full model scores O(r, m) >= this is reported
-  // with that model's category instead of the graph-cut label (label_replacement.h, ModelLabel). The
-  // paper reports only completed objects (O > 0.96) as their model: 1.0 or more = off. 0.93: on the
-  // procedural rooms, labels of objects whose best model scored below it were more often right than
-  // the model (docs/results/procedural-3seeds-session13.md).
-  double model_label_min_objectness = 0.93;
-  // Completed objects whose seen surface their model does not hold are reported unfinished
-  // (completion_check.h).
-  CompletionCheckOptions completion_check;
-  // Pieces lying on a recognized neighbour's model are reported as part of it (fragment_absorption.h).
-  FragmentAbsorptionOptions fragments;
-  // Reported objects whose size no database model of their category has lose that label
-  // (recognition/category_extent.h).
-  recognition::SizePlausibilityOptions size_check;
-  // Objects in wall openings are reported as windows, window labels elsewhere go (wall_openings.h).
-  WallOpeningOptions wall_openings;
   // What counts as impossible space for a recognition hypothesis (used when
   // recognition.space_weight > 0).
   MapSpaceEvidenceOptions space;
@@ -92,7 +66,6 @@ struct ScannerOptions {
     v("frontier_views", frontier_views);
     v("rematch_growth_fraction", rematch_growth_fraction);
     v("min_object_elements", min_object_elements);
-    v("min_reported_elements", min_reported_elements);
     v("stall_views", stall_views);
     v("stall_min_gain", stall_min_gain);
     v("remove_noise", remove_noise);
@@ -105,11 +78,6 @@ struct ScannerOptions {
     v("structure_residue_distance_m", structure_residue_distance_m);
     v("structure_reveal_depth_m", structure_reveal_depth_m);
     v("structure_redetect_growth", structure_redetect_growth);
-    v("model_label_min_objectness", model_label_min_objectness);
-    v("completion_check", completion_check);
-    v("fragments", fragments);
-    v("size_check", size_check);
-    v("wall_openings", wall_openings);
     v("space", space);
     v("coverage_views", coverage_views);
     v("threads", threads);
@@ -122,7 +90,6 @@ struct ScannerOptions {
     config::Require(frontier_views >= 1, "scanner.frontier_views", "must be >= 1");
     config::RequireNonNegative("scanner.rematch_growth_fraction", rematch_growth_fraction);
     config::Require(min_object_elements >= 1, "scanner.min_object_elements", "must be >= 1");
-    config::Require(min_reported_elements >= 0, "scanner.min_reported_elements", "must be >= 0 (0 = off)");
     config::Require(stall_views >= 0, "scanner.stall_views", "must be >= 0");
     config::RequireNonNegative("scanner.stall_min_gain", stall_min_gain);
     config::RequireNonNegative("scanner.line_of_sight_skip_m", line_of_sight_skip_m);
@@ -134,11 +101,6 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_residue_distance_m", structure_residue_distance_m);
     config::RequireNonNegative("scanner.structure_reveal_depth_m", structure_reveal_depth_m);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
-    config::RequireNonNegative("scanner.model_label_min_objectness", model_label_min_objectness);
-    completion_check.Validate();
-    fragments.Validate();
-    size_check.Validate();
-    wall_openings.Validate();
     space.Validate();
     coverage_views.Validate();
     config::Require(threads >= 0, "scanner.threads", "must be >= 0");

@@ -29,7 +29,6 @@ RegroupResult RegroupImplausibleFragments(const std::vector<RegroupCandidate>& o
     out.category[static_cast<std::size_t>(i)] = objects[static_cast<std::size_t>(i)].category;
     points[static_cast<std::size_t>(i)] = objects[static_cast<std::size_t>(i)].points_world;
   }
-  if (!options.enabled) return out;
   for (const auto& [a, b] : adjacency) {
     if (a == b || a < 0 || b < 0 || a >= n || b >= n) continue;
     neighbors[static_cast<std::size_t>(a)].insert(b);
@@ -161,7 +160,6 @@ RegroupResult JoinStackedPieces(const std::vector<RegroupCandidate>& objects, do
     out.category.push_back(objects[static_cast<std::size_t>(i)].category);
     out.points_world.push_back(objects[static_cast<std::size_t>(i)].points_world);
   }
-  if (!options.enabled) return out;
   const auto joinable = [&](int i) {
     const RegroupCandidate& o = objects[static_cast<std::size_t>(i)];
     if (out.host[static_cast<std::size_t>(i)] != i || o.fixed || !o.category) return false;

@@ -189,9 +189,6 @@ TEST(RegroupTest, PlausibleFixedUnrecognizedAndApartObjectsStay) {
   EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), options).merges, 0);
   objects[0].fixed = false;
   EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), options).merges, 1);
-  // Disabled: nothing moves.
-  options.enabled = false;
-  EXPECT_EQ(RegroupImplausibleFragments(objects, {{0, 1}}, Extents(), options).merges, 0);
 }
 
 TEST(ObjectsWithinDistanceTest, PairsOfObjectsWithClosePoints) {
@@ -253,10 +250,6 @@ TEST(JoinStackedPiecesTest, AShadeTakenForARadioJoinsTheLampStandingUnderIt) {
   EXPECT_EQ(r.category[0], Category::kLamp);
   EXPECT_EQ(r.points_world[0].size(), objects[0].points_world.size() + objects[1].points_world.size());
   EXPECT_TRUE(r.points_world[1].empty());
-  // Off: nothing joins.
-  recognition::SizePlausibilityOptions off = Options();
-  off.enabled = false;
-  EXPECT_EQ(JoinStackedPieces(objects, 0.15, 0.05, extents, off).merges, 0);
 }
 
 TEST(JoinStackedPiecesTest, APieceThatTookAnotherHandsItOnWhenItJoins) {

@@ -14,9 +14,11 @@ SystemConfig LoadSystemConfig(const std::string& config_file, const std::vector<
 }
 
 std::string ToYaml(const SystemConfig& config) {
-  return "# objscan default configuration (paper defaults). Generated from the options structs by\n"
-         "# scripts/update_default_config.sh; a test keeps it equal to the code. Copy it, edit it and pass\n"
-         "# it with --config F.yaml, or override single keys with --set section.key=value.\n\n" +
+  return "# objscan's default configuration: the paper's method with objscan's additions, each listed with\n"
+         "# its paper value and measured effect in docs/beyond-the-paper.md (config/paper.yaml is the method\n"
+         "# as published). Generated from the options structs by scripts/update_default_config.sh; a test\n"
+         "# keeps it equal to the code. Copy it, edit it and pass it with --config F.yaml, or override single\n"
+         "# keys with --set section.key=value.\n\n" +
          config::ToYaml(config::Dump(config));
 }
 

@@ -15,6 +15,7 @@
 #include "objscan/planning/next_best_object.h"
 #include "objscan/planning/next_best_view.h"
 #include "objscan/recognition/recognizer.h"
+#include "objscan/scanning/report/report_options.h"
 #include "objscan/scanning/scanner_options.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
@@ -47,6 +48,10 @@ struct EvaluationOptions {
   // An incomplete object counts as a recognition at termination when its objectness reaches this
   // (complete objects always count).
   double recognized_min_objectness = 0.5;
+  // Measuring the report rules: the run also reports and scores its objects under other report
+  // options and writes report_variants.json (eval/report_variants.h): "ablation" or a YAML file of
+  // named variants; "" = none.
+  std::string report_variants;
 
   template <class V>
   void Visit(V& v) {
@@ -58,6 +63,7 @@ struct EvaluationOptions {
     v("coverage_observable_only", coverage_observable_only);
     v("coverage_robot_reach", coverage_robot_reach);
     v("recognized_min_objectness", recognized_min_objectness);
+    v("report_variants", report_variants);
   }
   void Validate() const {
     config::RequirePositive("eval.coverage_sigma", coverage_sigma);
@@ -83,6 +89,7 @@ struct SystemConfig {
   planning::NextBestViewOptions nbv;
   planning::ExplorationOptions exploration;
   ScannerOptions scanner;
+  ReportOptions report;  // the rules applied to the objects after the loop (report/)
   EvaluationOptions eval;
 
   template <class V>
@@ -102,6 +109,7 @@ struct SystemConfig {
     v("nbv", nbv);
     v("exploration", exploration);
     v("scanner", scanner);
+    v("report", report);
     v("eval", eval);
   }
   void Validate() const {
@@ -120,6 +128,7 @@ struct SystemConfig {
     nbv.Validate();
     exploration.Validate();
     scanner.Validate();
+    report.Validate();
     eval.Validate();
   }
 };

@@ -32,27 +32,25 @@ void ExtendOnWall(const mapping::WallPlane& wall, const Eigen::Vector3d& p, Open
 }  // namespace
 
 void WallOpeningOptions::Validate() const {
-  config::RequireNonNegative("scanner.wall_openings.min_depth_m", min_depth_m);
-  config::Require(max_depth_m > min_depth_m, "scanner.wall_openings.max_depth_m", "must be > min_depth_m");
-  config::RequireInRange("scanner.wall_openings.window_min_share", window_min_share, 0.0, 1.0);
-  config::RequireInRange("scanner.wall_openings.window_keep_share", window_keep_share, 0.0, 1.0);
-  config::Require(window_keep_share <= window_min_share, "scanner.wall_openings.window_keep_share",
+  config::RequireNonNegative("report.wall_openings.min_depth_m", min_depth_m);
+  config::Require(max_depth_m > min_depth_m, "report.wall_openings.max_depth_m", "must be > min_depth_m");
+  config::RequireInRange("report.wall_openings.window_min_share", window_min_share, 0.0, 1.0);
+  config::RequireInRange("report.wall_openings.window_keep_share", window_keep_share, 0.0, 1.0);
+  config::Require(window_keep_share <= window_min_share, "report.wall_openings.window_keep_share",
                   "must be <= window_min_share");
-  config::RequireNonNegative("scanner.wall_openings.min_sill_height_m", min_sill_height_m);
-  config::Require(std::isfinite(hanging_window_max_distance_m), "scanner.wall_openings.hanging_window_max_distance_m",
+  config::RequireNonNegative("report.wall_openings.min_sill_height_m", min_sill_height_m);
+  config::Require(std::isfinite(hanging_window_max_distance_m), "report.wall_openings.hanging_window_max_distance_m",
                   "must be a number (negative = off)");
-  config::RequireInRange("scanner.wall_openings.hanging_window_min_share", hanging_window_min_share, 0.0, 1.0);
-  config::Require(std::isfinite(join_gap_m), "scanner.wall_openings.join_gap_m", "must be finite");
-  config::Require(std::isfinite(curtain_max_distance_m), "scanner.wall_openings.curtain_max_distance_m",
-                  "must be finite");
-  config::RequireInRange("scanner.wall_openings.curtain_min_share", curtain_min_share, 0.0, 1.0);
-  config::RequireNonNegative("scanner.wall_openings.curtain_min_height_m", curtain_min_height_m);
-  config::RequireNonNegative("scanner.wall_openings.curtain_min_overlap_m", curtain_min_overlap_m);
-  config::RequireNonNegative("scanner.wall_openings.curtain_min_fold_depth_m", curtain_min_fold_depth_m);
-  config::Require(curtain_max_fold_depth_m >= curtain_min_fold_depth_m, "scanner.wall_openings.curtain_max_fold_depth_m",
+  config::RequireInRange("report.wall_openings.hanging_window_min_share", hanging_window_min_share, 0.0, 1.0);
+  config::RequireNonNegative("report.wall_openings.join_gap_m", join_gap_m);
+  config::RequireNonNegative("report.wall_openings.curtain_max_distance_m", curtain_max_distance_m);
+  config::RequireInRange("report.wall_openings.curtain_min_share", curtain_min_share, 0.0, 1.0);
+  config::RequireNonNegative("report.wall_openings.curtain_min_height_m", curtain_min_height_m);
+  config::RequireNonNegative("report.wall_openings.curtain_min_overlap_m", curtain_min_overlap_m);
+  config::RequireNonNegative("report.wall_openings.curtain_min_fold_depth_m", curtain_min_fold_depth_m);
+  config::Require(curtain_max_fold_depth_m >= curtain_min_fold_depth_m, "report.wall_openings.curtain_max_fold_depth_m",
                   "must be >= curtain_min_fold_depth_m");
-  config::Require(std::isfinite(door_max_depth_m), "scanner.wall_openings.door_max_depth_m",
-                  "must be a number (negative = off)");
+  config::RequireNonNegative("report.wall_openings.door_max_depth_m", door_max_depth_m);
 }
 
 double MinHorizontalWidth(const std::vector<Eigen::Vector3f>& points_world) {
@@ -75,7 +73,7 @@ double MinHorizontalWidth(const std::vector<Eigen::Vector3f>& points_world) {
 }
 
 bool TooDeepForADoor(const std::vector<Eigen::Vector3f>& points_world, const WallOpeningOptions& options) {
-  if (!options.enabled || options.door_max_depth_m < 0.0 || points_world.empty()) return false;
+  if (points_world.empty()) return false;
   return MinHorizontalWidth(points_world) > options.door_max_depth_m;
 }
 
@@ -83,7 +81,7 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
                                       const mapping::StructureResult& structure, bool labelled_window,
                                       const WallOpeningOptions& options) {
   WallOpeningResult result;
-  if (!options.enabled || points_world.empty() || structure.walls.empty()) return result;
+  if (points_world.empty() || structure.walls.empty()) return result;
   std::size_t in_openings = 0;
   std::vector<float> heights;
   heights.reserve(points_world.size());
@@ -111,7 +109,7 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
 OpeningExtent OpeningBounds(const std::vector<Eigen::Vector3f>& points_world, const mapping::StructureResult& structure,
                             const WallOpeningOptions& options) {
   OpeningExtent extent;
-  if (!options.enabled || structure.walls.empty()) return extent;
+  if (structure.walls.empty()) return extent;
   // The wall whose opening holds each point, -1 for none.
   std::vector<int> wall_of(points_world.size(), -1);
   std::vector<std::size_t> count(structure.walls.size(), 0);
@@ -166,14 +164,14 @@ bool MayBeCurtain(const std::optional<world::Category>& label, double wall_openi
 
 bool CurtainLabelGoes(const std::optional<world::Category>& label, const OpeningExtent& hanging,
                       const WallOpeningOptions& options) {
-  if (!options.curtain_must_hang || label != world::Category::kCurtain) return false;
+  if (label != world::Category::kCurtain) return false;
   return hanging.wall < 0 || hanging.fold_depth_m > options.curtain_max_fold_depth_m;
 }
 
 OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
                             const mapping::StructureResult& structure, const WallOpeningOptions& options) {
   OpeningExtent extent;
-  if (!options.enabled || options.curtain_max_distance_m < 0.0 || points_world.empty()) return extent;
+  if (points_world.empty()) return extent;
   const int w = HangingWall(points_world, structure, options.min_depth_m, options.curtain_max_distance_m,
                             options.curtain_min_share);
   if (w >= 0) {
@@ -199,7 +197,7 @@ OpeningExtent HangingExtent(const std::vector<Eigen::Vector3f>& points_world,
 
 int CurtainWindow(const OpeningExtent& hanging, const std::vector<OpeningExtent>& windows,
                   const WallOpeningOptions& options) {
-  if (!options.enabled || options.curtain_max_distance_m < 0.0 || hanging.wall < 0) return -1;
+  if (hanging.wall < 0) return -1;
   if (hanging.z_max_m - hanging.z_min_m < options.curtain_min_height_m) return -1;
   if (hanging.fold_depth_m < options.curtain_min_fold_depth_m || hanging.fold_depth_m > options.curtain_max_fold_depth_m) {
     return -1;

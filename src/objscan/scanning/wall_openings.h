@@ -26,7 +26,6 @@ struct StructureResult;
 namespace objscan::scanning {
 
 struct WallOpeningOptions {
-  bool enabled = true;          // false = the paper: labels from recognition alone
   double min_depth_m = 0.02;    // behind a wall plane by more than this ...
   double max_depth_m = 0.3;     // ... and at most this (the wall's thickness and a deep reveal)
   double window_min_share = 0.5;  // share of an object's points in openings that makes it a window
@@ -40,7 +39,7 @@ struct WallOpeningOptions {
   double hanging_window_min_share = 0.9;
   // Objects labelled window whose points in wall openings come this close (their boxes) are pieces of
   // one window (frame, sashes and panes are pre-segmented apart, and each piece fits a window model);
-  // they are reported as one. Negative = off (each piece is an object, as recognition left them).
+  // they are reported as one (report rule join_window_pieces).
   double join_gap_m = 0.1;
   // An object labelled door, or left unlabelled, is a curtain when at least curtain_min_share of its
   // points lie within curtain_max_distance_m in front of one wall (and not behind it), it is at
@@ -48,8 +47,8 @@ struct WallOpeningOptions {
   // curtain_min_fold_depth_m to curtain_max_fold_depth_m of distance from the wall: a door leaf
   // opened over a window is flat, ~1 cm with its panels; more than the maximum is a thing with
   // depth, such as shelves' boards and back), and it covers a window in that wall by
-  // curtain_min_overlap_m along the wall (and overlaps it in height). Negative
-  // curtain_max_distance_m = off (labels from recognition alone).
+  // curtain_min_overlap_m along the wall (and overlaps it in height) (report rule
+  // curtains_over_windows).
   double curtain_max_distance_m = 0.3;
   double curtain_min_share = 0.9;
   double curtain_min_height_m = 0.8;
@@ -60,24 +59,16 @@ struct WallOpeningOptions {
   // one curtain and are reported as one, hosted like window pieces (HostsOfGroups). false = each
   // panel is an object.
   bool join_curtain_panels = true;
-  // A curtain hangs just in front of a wall: a curtain label on an object that does not (HangingExtent
-  // finds no wall it hangs on, or its face spreads deeper than curtain_max_fold_depth_m, a thing with
-  // depth such as shelves) goes, as window labels go off wall openings, and a confident plausible
-  // match of another category takes its place (size_check.relabel). A curtain model's flat face fits
-  // the front of a wardrobe or a bookcase. No window is required: a drawn curtain hides its own.
-  // false = curtain labels from recognition stay.
-  bool curtain_must_hang = true;
   // Doors by their depth: a door leaf is a slab a few centimetres thick (with its handles and what of
   // the wall beside it joins it, under 0.35 m), and what the robot sees of it lies in such a slab; a
   // door label on an object whose seen surface is wider than door_max_depth_m in every horizontal
   // direction goes (a flat door model fits any flat face, such as a cabinet's front, and the sides
   // and top seen later make it 0.4-0.6 m deep), and a completed door that deep is reported
-  // unfinished. Negative = off.
+  // unfinished (report rules reopen_outgrown and door_depth).
   double door_max_depth_m = 0.4;
 
   template <class V>
   void Visit(V& v) {
-    v("enabled", enabled);
     v("min_depth_m", min_depth_m);
     v("max_depth_m", max_depth_m);
     v("window_min_share", window_min_share);
@@ -93,7 +84,6 @@ struct WallOpeningOptions {
     v("curtain_min_fold_depth_m", curtain_min_fold_depth_m);
     v("curtain_max_fold_depth_m", curtain_max_fold_depth_m);
     v("join_curtain_panels", join_curtain_panels);
-    v("curtain_must_hang", curtain_must_hang);
     v("door_max_depth_m", door_max_depth_m);
   }
   void Validate() const;

@@ -6,31 +6,15 @@
 #include <limits>
 
 #include "objscan/mapping/planes.h"
-#include "objscan/mapping/testing/one_wall.h"
+#include "objscan/scanning/testing/wall_shapes.h"
 
 namespace objscan::scanning {
 namespace {
 
-// A room whose wall x = 0 faces +x, 4 m long and 2.5 m high, over a floor at z = 0.
-mapping::StructureResult OneWallRoom() {
-  mapping::StructureResult s = mapping::testing::OneWall();
-  s.has_floor = true;
-  s.floor_height_m = 0.0;
-  return s;
-}
-
-// A vertical rectangle of points at x = `x`, y in [y0, y1], z in [z0, z1], 2 cm apart.
-std::vector<Eigen::Vector3f> Pane(double x, double y0, double y1, double z0, double z1) {
-  std::vector<Eigen::Vector3f> points;
-  for (double y = y0; y <= y1 + 1e-9; y += 0.02) {
-    for (double z = z0; z <= z1 + 1e-9; z += 0.02) points.emplace_back(x, y, z);
-  }
-  return points;
-}
-
-void Append(const std::vector<Eigen::Vector3f>& more, std::vector<Eigen::Vector3f>* points) {
-  points->insert(points->end(), more.begin(), more.end());
-}
+using testing::Append;
+using testing::OneWallRoom;
+using testing::Pane;
+using testing::Pleats;
 
 TEST(WallOpeningTest, ARecessedPaneOffTheFloorIsAWindow) {
   const mapping::StructureResult room = OneWallRoom();
@@ -124,11 +108,8 @@ TEST(WallOpeningTest, AnOpeningThatReachesTheFloorIsNoWindow) {
             WallOpeningVerdict::kNoChange);
 }
 
-TEST(WallOpeningTest, OffOrWithoutWallsNothingChanges) {
-  WallOpeningOptions off;
-  off.enabled = false;
+TEST(WallOpeningTest, WithoutWallsOrPointsNothingChanges) {
   const std::vector<Eigen::Vector3f> pane = Pane(-0.06, 1.0, 2.0, 0.9, 2.0);
-  EXPECT_EQ(ClassifyWallOpening(pane, OneWallRoom(), false, off).verdict, WallOpeningVerdict::kNoChange);
   EXPECT_EQ(ClassifyWallOpening(pane, mapping::StructureResult(), true, WallOpeningOptions()).verdict,
             WallOpeningVerdict::kNoChange);
   EXPECT_EQ(ClassifyWallOpening({}, OneWallRoom(), true, WallOpeningOptions()).verdict, WallOpeningVerdict::kNoChange);
@@ -151,7 +132,7 @@ TEST(WallOpeningTest, OptionsAreChecked) {
   o.hanging_window_min_share = 1.5;
   EXPECT_ANY_THROW(o.Validate());
   o = WallOpeningOptions();
-  o.join_gap_m = std::numeric_limits<double>::infinity();
+  o.join_gap_m = -0.1;
   EXPECT_ANY_THROW(o.Validate());
   o = WallOpeningOptions();
   o.curtain_max_distance_m = std::numeric_limits<double>::quiet_NaN();
@@ -171,7 +152,7 @@ TEST(WallOpeningTest, OptionsAreChecked) {
   o = WallOpeningOptions();
   o.door_max_depth_m = std::numeric_limits<double>::quiet_NaN();
   EXPECT_ANY_THROW(o.Validate());
-  o.door_max_depth_m = std::numeric_limits<double>::infinity();
+  o.door_max_depth_m = -1.0;
   EXPECT_ANY_THROW(o.Validate());
   EXPECT_NO_THROW(WallOpeningOptions().Validate());
 }
@@ -190,9 +171,6 @@ TEST(WindowPiecesTest, OpeningBoundsHoldOnlyThePointsInOpenings) {
   EXPECT_NEAR(extent.bounds.min_m.z(), 0.9, 1e-6);
   EXPECT_NEAR(extent.bounds.max_m.z(), 2.0, 1e-6);
   EXPECT_EQ(OpeningBounds(Pane(0.5, 0.0, 3.0, 0.5, 0.6), OneWallRoom(), WallOpeningOptions()).wall, -1);
-  WallOpeningOptions off;
-  off.enabled = false;
-  EXPECT_EQ(OpeningBounds(points, OneWallRoom(), off).wall, -1);
   EXPECT_EQ(OpeningBounds(points, mapping::StructureResult(), WallOpeningOptions()).wall, -1);
 }
 
@@ -270,17 +248,6 @@ TEST(WindowPiecesTest, EachGroupIsHostedByItsCompleteOrLargestPiece) {
   EXPECT_EQ(HostsOfGroups({-1, -1, -1, -1, -1, -1}, pieces), (std::vector<int>{0, 1, 2, 3, 4, 5}));
 }
 
-// A pleated panel hanging in front of the wall x = 0: a zig-zag between x0 - 4 cm and x0 + 4 cm,
-// pleats 10 cm wide, y in [y0, y1] 1 cm apart, z in [z0, z1] 2 cm apart.
-std::vector<Eigen::Vector3f> Pleats(double x0, double y0, double y1, double z0, double z1) {
-  std::vector<Eigen::Vector3f> points;
-  for (double y = y0; y <= y1 + 1e-9; y += 0.01) {
-    const double phase = std::fmod(y - y0 + 1e-9, 0.1) / 0.1;
-    const double x = x0 - 0.04 + 0.08 * (phase < 0.5 ? 2.0 * phase : 2.0 - 2.0 * phase);
-    for (double z = z0; z <= z1 + 1e-9; z += 0.02) points.emplace_back(x, y, z);
-  }
-  return points;
-}
 
 // Shelves 25 cm deep against the wall x = 0, y in [1.2, 1.9], 2 m tall: a back board, five boards
 // from the wall to 25 cm, and the front edges of the sides.
@@ -313,11 +280,6 @@ TEST(CurtainTest, APanelHangingOverAWindowIsACurtain) {
   EXPECT_GE(CurtainWindow(panel, windows, options), 0);
   // A short curtain from the sill down a little: still over the window.
   EXPECT_GE(CurtainWindow(HangingExtent(Pleats(0.1, 0.8, 2.2, 0.8, 2.1), room, options), windows, options), 0);
-  // Off: nothing hangs anywhere.
-  WallOpeningOptions off = options;
-  off.curtain_max_distance_m = -1.0;
-  EXPECT_EQ(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, off).wall, -1);
-  EXPECT_EQ(CurtainWindow(panel, windows, off), -1);
 }
 
 TEST(CurtainTest, EachPanelNamesTheWindowItHangsOver) {
@@ -332,10 +294,6 @@ TEST(CurtainTest, EachPanelNamesTheWindowItHangsOver) {
   EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 3.5, 3.95, 0.02, 2.2), room, options), windows, options), 1);
   // Between the windows, overlapping neither by 10 cm: none.
   EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 1.95, 3.05, 0.02, 2.2), room, options), windows, options), -1);
-  // Off: none.
-  WallOpeningOptions off = options;
-  off.curtain_max_distance_m = -1.0;
-  EXPECT_EQ(CurtainWindow(HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options), windows, off), -1);
 }
 
 TEST(CurtainTest, ADoorLeafOrThingsInTheRoomAreNoCurtains) {
@@ -405,19 +363,11 @@ TEST(DoorTest, ADoorLabelNeedsSomethingAsThinAsADoorLeaf) {
   EXPECT_TRUE(TooDeepForADoor(cabinet, options));
   // Its front alone is as thin as a door: the check cannot tell them apart.
   EXPECT_FALSE(TooDeepForADoor(Pane(0.6, 1.0, 2.0, 0.0, 0.9), options));
-  // Off.
-  WallOpeningOptions off = options;
-  off.door_max_depth_m = -1.0;
-  EXPECT_FALSE(TooDeepForADoor(cabinet, off));
-  off = options;
-  off.enabled = false;
-  EXPECT_FALSE(TooDeepForADoor(cabinet, off));
 }
 
-TEST(CurtainTest, UnderCurtainMustHangCurtainLabelsOnThingsWithDepthGo) {
+TEST(CurtainTest, CurtainLabelsOnThingsWithDepthGo) {
   const mapping::StructureResult room = OneWallRoom();
-  WallOpeningOptions options;
-  options.curtain_must_hang = true;
+  const WallOpeningOptions options;
   // A pleated panel hanging 10 cm in front of the wall keeps its label, over a window or not (a
   // drawn curtain hides its window).
   EXPECT_FALSE(CurtainLabelGoes(world::Category::kCurtain, HangingExtent(Pleats(0.1, 0.6, 1.3, 0.02, 2.2), room, options),
@@ -437,10 +387,6 @@ TEST(CurtainTest, UnderCurtainMustHangCurtainLabelsOnThingsWithDepthGo) {
   // Only curtain labels are this rule's business.
   EXPECT_FALSE(CurtainLabelGoes(world::Category::kCabinet, wardrobe_extent, options));
   EXPECT_FALSE(CurtainLabelGoes(std::nullopt, wardrobe_extent, options));
-  // Off: recognition's curtain labels stay.
-  WallOpeningOptions off = options;
-  off.curtain_must_hang = false;
-  EXPECT_FALSE(CurtainLabelGoes(world::Category::kCurtain, wardrobe_extent, off));
 }
 
 }  // namespace

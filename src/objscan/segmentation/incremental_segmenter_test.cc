@@ -11,6 +11,7 @@
 #include "objscan/mapping/testing/analytic_world.h"
 #include "objscan/mapping/planes.h"
 #include "objscan/segmentation/segmentation_quality.h"
+#include "objscan/eval/ground_truth_votes.h"
 #include "objscan/sim/depth_camera.h"
 #include "objscan/world/procedural/procedural.h"
 
@@ -22,6 +23,7 @@ using mapping::testing::LookAt;
 
 struct Scanned {
   mapping::SurfaceMap map;
+  eval::GroundTruthVotes votes;  // each element's ground-truth instance
   IncrementalSegmenter segmenter;
 };
 
@@ -31,6 +33,7 @@ void Scan(const AnalyticWorld& world, const std::vector<geometry::Pose3>& poses,
   for (const geometry::Pose3& T : poses) {
     const sim::DepthFrame frame = world.Render(T, &rng);
     s->map.Integrate(frame, &assoc);
+    s->votes.Observe(frame, assoc);
     s->segmenter.Update(frame, assoc, &s->map);
   }
 }
@@ -46,10 +49,11 @@ std::vector<geometry::Pose3> Ring(const Eigen::Vector3d& target, double radius, 
 }
 
 // For each ground-truth instance: label -> number of labelled elements.
-std::map<std::int32_t, std::map<std::int32_t, int>> LabelsPerInstance(const mapping::SurfaceMap& map) {
+std::map<std::int32_t, std::map<std::int32_t, int>> LabelsPerInstance(const Scanned& s) {
+  const mapping::SurfaceMap& map = s.map;
   std::map<std::int32_t, std::map<std::int32_t, int>> out;
   for (std::size_t i = 0; i < map.size(); ++i) {
-    if (map.label(i) > 0) ++out[map.gt_instance(i)][map.label(i)];
+    if (map.label(i) > 0) ++out[s.votes.Instance(i)][map.label(i)];
   }
   return out;
 }
@@ -87,7 +91,7 @@ TEST(IncrementalSegmenterTest, BoxStandingOnABoxGivesTwoAdjacentComponents) {
   world.Add(Eigen::Vector3d(-0.2, -0.15, 0.45), Eigen::Vector3d(0.15, 0.15, 0.75), 2);
   Scanned s;
   Scan(world, Ring(Eigen::Vector3d(0, 0, 0.4), 1.5, 0.9, 8), 12, &s);
-  const auto per_instance = LabelsPerInstance(s.map);
+  const auto per_instance = LabelsPerInstance(s);
   const auto [bottom_label, bottom_share] = MajorityLabel(per_instance.at(1));
   const auto [top_label, top_share] = MajorityLabel(per_instance.at(2));
   EXPECT_NE(bottom_label, top_label);
@@ -101,7 +105,7 @@ TEST(IncrementalSegmenterTest, BoxStandingOnABoxGivesTwoAdjacentComponents) {
   int big = 0;
   for (const Component& c : graph.components()) big += c.area_m2 > 0.02 ? 1 : 0;
   EXPECT_EQ(big, 2);
-  const PresegQuality q = EvaluatePresegmentation(s.map, {});
+  const PresegQuality q = EvaluatePresegmentation(s.map, s.votes.Instances(s.map.size()), {});
   EXPECT_GE(q.preseg_purity, 0.97);
   EXPECT_GE(q.rand_index_preseg, 0.9);
 }
@@ -118,7 +122,7 @@ TEST(IncrementalSegmenterTest, AdjacencyCellSizeJoinsPartsAcrossASmallGap) {
     options.adjacency_cell_voxels = cell_voxels;
     s.segmenter = IncrementalSegmenter(options);
     Scan(world, Ring(Eigen::Vector3d(0, 0, 0.3), 1.6, 1.0, 8), 13, &s);
-    const auto per_instance = LabelsPerInstance(s.map);
+    const auto per_instance = LabelsPerInstance(s);
     const std::int32_t left = MajorityLabel(per_instance.at(1)).first;
     const std::int32_t right = MajorityLabel(per_instance.at(2)).first;
     ASSERT_NE(left, right);
@@ -143,7 +147,7 @@ TEST(IncrementalSegmenterTest, ChairIsSplitIntoNearConvexParts) {
   }
   Scanned s;
   Scan(world, Ring(Eigen::Vector3d(0, 0, 0.4), 1.3, 0.7, 8), 13, &s);
-  const auto per_instance = LabelsPerInstance(s.map);
+  const auto per_instance = LabelsPerInstance(s);
   const std::int32_t seat = MajorityLabel(per_instance.at(1)).first;
   const std::int32_t back = MajorityLabel(per_instance.at(2)).first;
   const std::int32_t floor = MajorityLabel(per_instance.at(10)).first;
@@ -156,7 +160,7 @@ TEST(IncrementalSegmenterTest, ChairIsSplitIntoNearConvexParts) {
     EXPECT_NE(leg_label, floor) << "leg " << leg;
   }
   // Parts are not smeared into each other.
-  EXPECT_GE(EvaluatePresegmentation(s.map, {10}).preseg_purity, 0.95);
+  EXPECT_GE(EvaluatePresegmentation(s.map, s.votes.Instances(s.map.size()), {10}).preseg_purity, 0.95);
   const ComponentGraph& graph = s.segmenter.Components(&s.map);
   EXPECT_TRUE(graph.Adjacent(seat, back));
 }
@@ -201,7 +205,7 @@ TEST(IncrementalSegmenterTest, CabinetsInARowWithSmallStepsStaySeparate) {
     poses.push_back(LookAt(Eigen::Vector3d(2.6, y, 1.3), Eigen::Vector3d(0.3, 0.0, 0.5)));
   }
   Scan(world, poses, 17, &s);
-  const auto per_instance = LabelsPerInstance(s.map);
+  const auto per_instance = LabelsPerInstance(s);
   std::set<std::int32_t> labels;
   for (int cabinet = 1; cabinet <= 3; ++cabinet) {
     const auto [label, share] = MajorityLabel(per_instance.at(cabinet));
@@ -209,7 +213,7 @@ TEST(IncrementalSegmenterTest, CabinetsInARowWithSmallStepsStaySeparate) {
     EXPECT_GE(share, 0.6) << "cabinet " << cabinet;
   }
   EXPECT_EQ(labels.size(), 3u) << "cabinets share a label";
-  EXPECT_GE(EvaluatePresegmentation(s.map, {10, 11}).preseg_purity, 0.95);
+  EXPECT_GE(EvaluatePresegmentation(s.map, s.votes.Instances(s.map.size()), {10, 11}).preseg_purity, 0.95);
 }
 
 // Procedural furniture on thin legs and feet standing on the floor, rendered by the simulator with
@@ -243,13 +247,14 @@ TEST(IncrementalSegmenterTest, FloorPriorKeepsTheFloorLabelOffFurniture) {
         camera.Render(LookAt(Eigen::Vector3d(3.2 * std::cos(yaw), 3.2 * std::sin(yaw), 1.3), Eigen::Vector3d(0, 0, 0.3)),
                       &rng);
     s.map.Integrate(frame, &assoc);
+    s.votes.Observe(frame, assoc);
     s.segmenter.Update(frame, assoc, &s.map);
   }
   // Labels per instance over the elements clear of the floor (a pedestal's base plate lying within
   // the floor tolerance is floor for the prior and for the structure detector alike).
   std::map<std::int32_t, std::map<std::int32_t, int>> per_instance;
   for (std::size_t i = 0; i < s.map.size(); ++i) {
-    const std::int32_t g = s.map.gt_instance(i);
+    const std::int32_t g = s.votes.Instance(i);
     if (s.map.label(i) > 0 && (g == floor_id || s.map.position(i).z() > 0.04f)) ++per_instance[g][s.map.label(i)];
   }
   const std::int32_t floor_label = MajorityLabel(per_instance.at(floor_id)).first;
@@ -263,7 +268,7 @@ TEST(IncrementalSegmenterTest, FloorPriorKeepsTheFloorLabelOffFurniture) {
         << world::CategoryName(o.category) << " " << it->second << " of " << total;
   }
   mapping::StructureDetector().Update(&s.map);
-  EXPECT_GE(EvaluatePresegmentation(s.map, {floor_id}).preseg_purity, 0.97);
+  EXPECT_GE(EvaluatePresegmentation(s.map, s.votes.Instances(s.map.size()), {floor_id}).preseg_purity, 0.97);
 }
 
 TEST(IncrementalSegmenterTest, ComponentsTrackChangesIncrementally) {
@@ -276,7 +281,7 @@ TEST(IncrementalSegmenterTest, ComponentsTrackChangesIncrementally) {
   ASSERT_GE(g1.size(), 2u);
   EXPECT_FALSE(s.segmenter.changed_labels().empty());
   // Separate boxes are not adjacent.
-  const auto per_instance = LabelsPerInstance(s.map);
+  const auto per_instance = LabelsPerInstance(s);
   const std::int32_t a = MajorityLabel(per_instance.at(1)).first, b = MajorityLabel(per_instance.at(2)).first;
   EXPECT_FALSE(g1.Adjacent(a, b));
   const Component* ca = g1.Find(a);
@@ -395,6 +400,7 @@ Scanned ScanCounterRun(bool slot_split) {
   for (const geometry::Pose3& T : poses) {
     const sim::DepthFrame frame = world.Render(T, &rng);
     s.map.Integrate(frame, &assoc);
+    s.votes.Observe(frame, assoc);
     s.segmenter.Update(frame, assoc, &s.map);
     s.segmenter.Components(&s.map);
   }
@@ -405,7 +411,7 @@ TEST(IncrementalSegmenterTest, SlotSplitCutsACounterRunIntoItsCabinets) {
   for (bool slot_split : {false, true}) {
     Scanned s = ScanCounterRun(slot_split);
     const ComponentGraph& graph = s.segmenter.Components(&s.map);
-    const auto per_instance = LabelsPerInstance(s.map);
+    const auto per_instance = LabelsPerInstance(s);
     std::vector<std::int32_t> labels;
     for (int cabinet = 1; cabinet <= 3; ++cabinet) {
       const auto [label, share] = MajorityLabel(per_instance.at(cabinet));

@@ -20,6 +20,7 @@
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/segmentation_quality.h"
+#include "objscan/eval/ground_truth_votes.h"
 #include "objscan/sim/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
 #include "objscan/sim/navigator.h"
@@ -36,6 +37,7 @@ constexpr double kRobotHeightM = 1.4;
 
 struct RoomScan {
   mapping::SurfaceMap map;
+  eval::GroundTruthVotes votes;  // each element's ground-truth instance
   IncrementalSegmenter segmenter;
   mapping::StructureResult structure;
 };
@@ -51,6 +53,7 @@ void Scan(const world::Scene& scene, const std::vector<geometry::Pose3>& views, 
   for (const geometry::Pose3& T : views) {
     const sim::DepthFrame frame = camera.Render(T, &rng);
     scan->map.Integrate(frame, &association);
+    scan->votes.Observe(frame, association);
     scan->segmenter.Update(frame, association, &scan->map);
     scan->structure = detector.Update(&scan->map);
   }
@@ -88,10 +91,11 @@ std::vector<geometry::Pose3> RingViews(const world::Scene& scene, int count, boo
 
 // Per furniture instance: label -> its labelled, non-structural elements.
 std::map<std::int32_t, std::map<std::int32_t, int>> LabelsPerFurniture(const world::Scene& scene,
-                                                                       const mapping::SurfaceMap& map) {
+                                                                       const RoomScan& scan) {
+  const mapping::SurfaceMap& map = scan.map;
   std::map<std::int32_t, std::map<std::int32_t, int>> out;
   for (std::size_t i = 0; i < map.size(); ++i) {
-    const std::int32_t g = map.gt_instance(i);
+    const std::int32_t g = scan.votes.Instance(i);
     const world::SceneObject* o = scene.Find(g);
     if (o == nullptr || o->IsStructural() || map.label(i) <= 0 || map.structure(i) != mapping::Structure::kNone) continue;
     ++out[g][map.label(i)];
@@ -159,9 +163,9 @@ TEST(PresegRoomsTest, ProceduralRoomsFromARingOfTwelveViewsArePure) {
     ASSERT_EQ(views.size(), 12u);
     RoomScan scan;
     Scan(scene, views, 7, &scan);
-    const PresegQuality q = EvaluatePresegmentation(scan.map, StructuralInstances(scene));
+    const PresegQuality q = EvaluatePresegmentation(scan.map, scan.votes.Instances(scan.map.size()), StructuralInstances(scene));
     // The ring sees most of the furniture (a room's worth of object points).
-    const auto per_furniture = LabelsPerFurniture(scene, scan.map);
+    const auto per_furniture = LabelsPerFurniture(scene, scan);
     int seen = 0;
     for (const auto& [instance, labels] : per_furniture) {
       int total = 0;
@@ -197,12 +201,12 @@ TEST(PresegRoomsTest, OascBedroomFurnitureIsSplitIntoPartsNotSmeared) {
   ASSERT_GE(views.size(), 30u);
   RoomScan scan;
   Scan(scene, views, 11, &scan);
-  const PresegQuality q = EvaluatePresegmentation(scan.map, StructuralInstances(scene));
+  const PresegQuality q = EvaluatePresegmentation(scan.map, scan.votes.Instances(scan.map.size()), StructuralInstances(scene));
   EXPECT_GE(q.preseg_purity, 0.95);
   // Pieces of furniture seen well (>= 2000 elements) and how many of them have two or more parts
   // (labels holding >= 200 of their elements).
   int well_seen = 0, split = 0;
-  for (const auto& [instance, labels] : LabelsPerFurniture(scene, scan.map)) {
+  for (const auto& [instance, labels] : LabelsPerFurniture(scene, scan)) {
     int total = 0;
     for (const auto& kv : labels) total += kv.second;
     if (total < 2000) continue;

@@ -51,13 +51,13 @@ double Purity(const std::vector<std::int32_t>& predicted, const std::vector<std:
   return static_cast<double>(sum) / static_cast<double>(predicted.size());
 }
 
-PresegQuality EvaluatePresegmentation(const mapping::SurfaceMap& map,
+PresegQuality EvaluatePresegmentation(const mapping::SurfaceMap& map, const std::vector<std::int32_t>& element_instance,
                                       const std::vector<std::int32_t>& structural_instances) {
   const std::unordered_set<std::int32_t> structural(structural_instances.begin(), structural_instances.end());
   std::vector<std::int32_t> predicted, truth;
   for (std::size_t i = 0; i < map.size(); ++i) {
     if (map.label(i) <= 0 || map.structure(i) != mapping::Structure::kNone) continue;
-    const std::int32_t g = map.gt_instance(i);
+    const std::int32_t g = i < element_instance.size() ? element_instance[i] : 0;
     if (g == 0 || structural.count(g)) continue;
     predicted.push_back(map.label(i));
     truth.push_back(g);

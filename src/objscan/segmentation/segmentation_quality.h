@@ -1,7 +1,8 @@
 #pragma once
 // Quality of a segmentation against ground truth: the Rand Index (exact, from the contingency
 // table) and purity. The pre-segmentation measures of run.json (preseg_purity, rand_index_preseg)
-// are computed on the map elements' majority ground-truth instances (evaluation only).
+// are computed on the map elements' majority ground-truth instances (evaluation only:
+// eval/ground_truth_votes.h), which the caller passes in.
 #include <cstdint>
 #include <vector>
 
@@ -27,8 +28,9 @@ struct PresegQuality {
 
 // Over the labelled elements that are neither tagged structural by the method nor ground-truth
 // structure (instances listed in `structural_instances`, e.g. floor and walls), and not of
-// instance 0 (no object).
-PresegQuality EvaluatePresegmentation(const mapping::SurfaceMap& map,
+// instance 0 (no object). `element_instance[i]` is element i's ground-truth instance (elements
+// beyond its size count as instance 0).
+PresegQuality EvaluatePresegmentation(const mapping::SurfaceMap& map, const std::vector<std::int32_t>& element_instance,
                                       const std::vector<std::int32_t>& structural_instances);
 
 }  // namespace objscan::segmentation

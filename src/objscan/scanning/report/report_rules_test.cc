@@ -1,0 +1,417 @@
+// Each report rule on a small hand-made case, and the pipeline's order.
+#include "objscan/scanning/report/report_rules.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "objscan/common/error.h"
+#include "objscan/mapping/planes.h"
+#include "objscan/recognition/test_shapes.h"
+#include "objscan/scanning/report/report_pipeline.h"
+#include "objscan/scanning/testing/wall_shapes.h"
+
+namespace objscan::scanning {
+namespace {
+
+using testing::Append;
+using testing::OneWallRoom;
+using testing::Pane;
+using testing::Pleats;
+using world::Category;
+using Points = std::vector<Eigen::Vector3f>;
+
+Points Box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  Points points, normals;
+  recognition::testing::BoxSurface(lo, hi, 0.02, &points, &normals);
+  return points;
+}
+
+segmentation::ModelMatch Match(Category category, double objectness, int model_id) {
+  segmentation::ModelMatch m;
+  m.category = category;
+  m.objectness = objectness;
+  m.model_id = model_id;
+  m.entry_id = model_id;
+  m.full_model = true;
+  return m;
+}
+
+// Recognition, map and database of a hand-made room: each component label has its points, and the
+// answers of recognition are set per union of labels.
+class FakeSources : public ReportSources {
+ public:
+  std::map<std::int32_t, Points> component_points;
+  std::map<std::vector<std::int32_t>, segmentation::MatchResult> full_matches;
+  std::map<std::pair<std::vector<std::int32_t>, Category>, segmentation::ModelMatch> best_of_category;
+  std::map<int, Points> entries;
+
+  segmentation::MatchResult MatchFullModels(const std::vector<std::int32_t>& labels) override {
+    auto it = full_matches.find(labels);
+    return it == full_matches.end() ? segmentation::MatchResult() : it->second;
+  }
+  std::optional<segmentation::ModelMatch> BestOfCategory(const std::vector<std::int32_t>& labels,
+                                                         Category category) override {
+    auto it = best_of_category.find({labels, category});
+    if (it == best_of_category.end()) return std::nullopt;
+    return it->second;
+  }
+  Points ComponentPoints(const std::vector<std::int32_t>& labels) const override {
+    Points out;
+    for (auto l : labels) {
+      auto it = component_points.find(l);
+      if (it != component_points.end()) Append(it->second, &out);
+    }
+    return out;
+  }
+  std::size_t ElementCount(const std::vector<std::int32_t>& labels) const override {
+    return ComponentPoints(labels).size();
+  }
+  std::string ModelName(int model_id) const override { return model_id >= 0 ? "m" + std::to_string(model_id) : ""; }
+  const Points* EntryPoints(int entry_id) const override {
+    auto it = entries.find(entry_id);
+    return it == entries.end() ? nullptr : &it->second;
+  }
+};
+
+// One test room: a wall x = 0 facing +x over a floor, the fake sources and the objects.
+struct ReportCase {
+  FakeSources sources;
+  mapping::StructureResult structure = OneWallRoom();
+  recognition::CategoryExtents extents;
+  ReportedObjects objects;
+  std::vector<segmentation::MatchResult> unfinished_matches;  // reserved: pointers stay valid
+
+  ReportCase() { unfinished_matches.reserve(16); }
+
+  ReportContext Context() {
+    ReportContext c;
+    c.sources = &sources;
+    c.structure = &structure;
+    c.category_extents = &extents;
+    return c;
+  }
+  // An unfinished object of one component with these points, label and full-model matches.
+  int AddUnfinished(std::int32_t label, const Points& points, std::optional<Category> category,
+                    std::vector<segmentation::ModelMatch> matches = {}, double objectness = 0.5) {
+    sources.component_points[label] = points;
+    ReportedObject r;
+    r.record.id = label;
+    r.record.labels = {label};
+    r.record.category = category;
+    r.record.objectness = objectness;
+    r.points_world = points;
+    unfinished_matches.push_back(segmentation::MatchResult{std::move(matches)});
+    r.full_matches = &unfinished_matches.back();
+    if (!r.full_matches->models.empty()) r.model_entry = r.full_matches->models.front().entry_id;
+    return objects.Add(std::move(r));
+  }
+  // A completed object of one component: its model `match`, placed at the identity.
+  int AddCompleted(std::int32_t label, const Points& points, const segmentation::ModelMatch& match) {
+    sources.component_points[label] = points;
+    ReportedObject r;
+    r.record.id = label;
+    r.record.labels = {label};
+    r.record.category = match.category;
+    r.record.objectness = match.objectness;
+    r.record.complete = true;
+    r.record.model_index = match.model_id;
+    r.record.model = sources.ModelName(match.model_id);
+    r.model_entry = match.entry_id;
+    r.num_elements = points.size();
+    return objects.Add(std::move(r));
+  }
+  void Apply(const ReportRule& rule) { rule.Apply(Context(), &objects); }
+  const ObjectRecord& record(int i) const { return objects[static_cast<std::size_t>(i)].record; }
+};
+
+const LabelChange& LastChange(const ObjectRecord& o) {
+  static const LabelChange kNone;
+  return o.label_changes.empty() ? kNone : o.label_changes.back();
+}
+
+TEST(ReportRulesTest, ReopenOutgrownReopensCompletedObjectsWhoseSurfaceLeftTheirModel) {
+  ReportCase c;
+  c.sources.entries[1] = Box({1, 1, 0}, {1.5, 1.5, 0.5});  // a night stand's model
+  // One completed object within its model's box, one whose seen surface now runs 1 m beyond it.
+  const int inside = c.AddCompleted(1, Box({1, 1, 0}, {1.5, 1.5, 0.5}), Match(Category::kNightStand, 0.97, 1));
+  const int outgrown = c.AddCompleted(2, Box({1, 1, 0}, {2.5, 1.5, 0.5}), Match(Category::kNightStand, 0.97, 1));
+  c.sources.full_matches[{2}].models = {Match(Category::kDresser, 0.8, 5)};
+  // A completed door whose seen surface is 0.6 m deep (a cabinet's front fitted by a door model).
+  c.sources.entries[3] = Box({3, 1, 0}, {3.05, 1.6, 2.0});
+  const int door = c.AddCompleted(3, Box({3, 1, 0}, {3.6, 1.6, 0.9}), Match(Category::kDoor, 0.97, 3));
+  c.Apply(ReopenOutgrownRule(CompletionCheckOptions(), WallOpeningOptions()));
+  EXPECT_TRUE(c.record(inside).complete);
+  EXPECT_TRUE(c.record(inside).label_changes.empty());
+  const ObjectRecord& o = c.record(outgrown);
+  EXPECT_FALSE(o.complete);
+  EXPECT_EQ(o.model, "m5");  // recognized again as a whole
+  EXPECT_DOUBLE_EQ(o.objectness, 0.8);
+  EXPECT_EQ(o.category, Category::kNightStand);  // the label stays until a rule changes it
+  EXPECT_EQ(LastChange(o).action, "reopen");
+  EXPECT_EQ(LastChange(o).rule, "reopen_outgrown");
+  EXPECT_EQ(LastChange(o).model, "m1");
+  EXPECT_FALSE(c.record(door).complete);
+  // A reopened object's grouped points are what was seen of it.
+  EXPECT_EQ(c.objects[static_cast<std::size_t>(outgrown)].points_world.size(),
+            c.sources.component_points[2].size());
+}
+
+TEST(ReportRulesTest, ModelLabelTakesAConfidentBestModelsCategory) {
+  ReportCase c;
+  const int sure = c.AddUnfinished(1, Box({0, 0, 0}, {0.5, 0.1, 0.4}), Category::kShelves,
+                                   {Match(Category::kMonitor, 0.95, 1), Match(Category::kShelves, 0.9, 2)});
+  const int unsure = c.AddUnfinished(2, Box({2, 0, 0}, {2.5, 0.1, 0.4}), Category::kShelves,
+                                     {Match(Category::kMonitor, 0.9, 1)});
+  const int none = c.AddUnfinished(3, Box({4, 0, 0}, {4.5, 0.1, 0.4}), std::nullopt);
+  c.Apply(ModelLabelRule(0.93));
+  EXPECT_EQ(c.record(sure).category, Category::kMonitor);
+  EXPECT_EQ(LastChange(c.record(sure)).from, Category::kShelves);
+  EXPECT_EQ(LastChange(c.record(sure)).to, Category::kMonitor);
+  EXPECT_EQ(c.record(unsure).category, Category::kShelves);
+  EXPECT_TRUE(c.record(unsure).label_changes.empty());
+  EXPECT_FALSE(c.record(none).category.has_value());
+}
+
+TEST(ReportRulesTest, AbsorbFragmentsJoinsAPieceLyingOnItsNeighboursModel) {
+  ReportCase c;
+  // A bed recognized with its model; a strip of its frame seen apart lies on that model's surface.
+  c.sources.entries[1] = Box({0, 0, 0}, {2, 1.6, 0.5});
+  const int bed = c.AddUnfinished(1, Box({0, 0, 0}, {2, 1.6, 0.5}), Category::kBed, {Match(Category::kBed, 0.9, 1)}, 0.9);
+  Points strip;
+  for (const auto& p : Box({0, 0, 0}, {2, 1.6, 0.5})) {
+    if (p.x() > 1.9f) strip.push_back(p);
+  }
+  const int piece = c.AddUnfinished(2, strip, Category::kChair, {}, 0.6);
+  const int apart = c.AddUnfinished(3, Box({4, 0, 0}, {4.4, 0.4, 0.8}), Category::kChair, {}, 0.6);
+  c.Apply(AbsorbFragmentsRule(FragmentAbsorptionOptions()));
+  EXPECT_FALSE(c.objects[static_cast<std::size_t>(piece)].reported());
+  EXPECT_TRUE(c.objects[static_cast<std::size_t>(apart)].reported());
+  EXPECT_EQ(c.record(bed).labels, (std::vector<std::int32_t>{1, 2}));
+  EXPECT_EQ(LastChange(c.record(bed)).action, "join");
+  EXPECT_EQ(LastChange(c.record(bed)).joined_id, 2);
+  const std::vector<ObjectRecord> reported = c.objects.TakeReportedRecords();
+  EXPECT_EQ(reported.size(), 2u);
+}
+
+// Night stands 0.5 m tall with a 0.6-0.7 m footprint diagonal; beds 0.6 m tall, 2.2-2.6 m.
+recognition::SizePlausibilityOptions SizeOptions() {
+  recognition::SizePlausibilityOptions options;
+  options.min_ratio = 0.8;
+  options.max_ratio = 1.2;
+  options.extent_trim_fraction = 0.0;
+  return options;
+}
+void AddSizes(recognition::CategoryExtents* extents) {
+  extents->Add(Category::kNightStand, {0.5, 0.6});
+  extents->Add(Category::kNightStand, {0.5, 0.7});
+  extents->Add(Category::kBed, {0.6, 2.2});
+  extents->Add(Category::kBed, {0.6, 2.6});
+  extents->Add(Category::kLamp, {1.4, 0.4});
+  extents->Add(Category::kLamp, {1.7, 0.5});
+  extents->Add(Category::kRadio, {0.2, 0.4});
+  extents->Add(Category::kRadio, {0.3, 0.6});
+}
+
+TEST(ReportRulesTest, RegroupBySizeJoinsASlabToTheNightStandItCompletes) {
+  ReportCase c;
+  AddSizes(&c.extents);
+  c.structure.walls.clear();  // far from any wall either way
+  const int body = c.AddUnfinished(1, Box({1, 1, 0}, {1.4, 1.45, 0.35}), Category::kNightStand);
+  const int slab = c.AddUnfinished(2, Box({1, 1, 0.35}, {1.4, 1.45, 0.5}), Category::kBed);
+  const int bed = c.AddUnfinished(3, Box({2, 1, 0}, {4, 2.2, 0.6}), Category::kBed);
+  c.Apply(RegroupBySizeRule(SizeOptions()));
+  EXPECT_FALSE(c.objects[static_cast<std::size_t>(slab)].reported());
+  EXPECT_EQ(c.record(body).labels, (std::vector<std::int32_t>{1, 2}));
+  EXPECT_EQ(c.record(body).category, Category::kNightStand);
+  EXPECT_EQ(LastChange(c.record(body)).rule, "regroup_by_size");
+  EXPECT_TRUE(c.objects[static_cast<std::size_t>(bed)].reported());
+  EXPECT_EQ(c.objects[static_cast<std::size_t>(body)].points_world.size(),
+            c.sources.component_points[1].size() + c.sources.component_points[2].size());
+}
+
+TEST(ReportRulesTest, JoinStackedJoinsAShadeToTheLampUnderIt) {
+  ReportCase c;
+  AddSizes(&c.extents);
+  c.structure.walls.clear();
+  const int stem = c.AddUnfinished(1, Box({1.05, 1.05, 0}, {1.35, 1.35, 1.2}), Category::kLamp);
+  const int shade = c.AddUnfinished(2, Box({1, 1, 1.25}, {1.4, 1.4, 1.5}), Category::kRadio);
+  const int radio = c.AddUnfinished(3, Box({3, 1, 0.5}, {3.2, 1.2, 0.7}), Category::kRadio);
+  c.Apply(JoinStackedRule(SizeOptions()));
+  EXPECT_FALSE(c.objects[static_cast<std::size_t>(shade)].reported());
+  EXPECT_EQ(c.record(stem).labels, (std::vector<std::int32_t>{1, 2}));
+  EXPECT_EQ(c.record(stem).category, Category::kLamp);
+  EXPECT_TRUE(c.objects[static_cast<std::size_t>(radio)].reported());
+}
+
+TEST(ReportRulesTest, DoorDepthTakesADoorLabelFromSomethingDeeperThanADoorLeaf) {
+  ReportCase c;
+  const int leaf = c.AddUnfinished(1, Pane(0.05, 1.0, 1.9, 0.0, 2.0), Category::kDoor);
+  const int cabinet = c.AddUnfinished(2, Box({1.0, 2.5, 0}, {1.6, 3.5, 0.9}), Category::kDoor);
+  c.Apply(DoorDepthRule(WallOpeningOptions()));
+  EXPECT_EQ(c.record(leaf).category, Category::kDoor);
+  EXPECT_FALSE(c.record(cabinet).category.has_value());
+  EXPECT_EQ(c.objects[static_cast<std::size_t>(cabinet)].taken, Category::kDoor);
+  EXPECT_EQ(LastChange(c.record(cabinet)).action, "take");
+}
+
+TEST(ReportRulesTest, WallOpeningsMakeAPaneInAnOpeningAWindowAndTakeWindowLabelsElsewhere) {
+  ReportCase c;
+  // A pane recessed 6 cm in the wall, sill at 0.9 m, labelled dresser; a window label on a thing
+  // 1 m out in the room.
+  const int pane = c.AddUnfinished(1, Pane(-0.06, 1.0, 2.0, 0.9, 2.0), Category::kDresser);
+  c.sources.best_of_category[{{1}, Category::kWindow}] = Match(Category::kWindow, 0.7, 9);
+  const int thing = c.AddUnfinished(2, Box({1.0, 1.0, 0.0}, {1.5, 1.5, 0.8}), Category::kWindow);
+  c.Apply(WallOpeningsRule(WallOpeningOptions()));
+  EXPECT_EQ(c.record(pane).category, Category::kWindow);
+  EXPECT_EQ(c.record(pane).model, "m9");
+  EXPECT_TRUE(c.objects[static_cast<std::size_t>(pane)].in_wall_opening);
+  EXPECT_GT(*c.record(pane).wall_opening_share, 0.9);
+  EXPECT_EQ(LastChange(c.record(pane)).action, "adopt");
+  EXPECT_FALSE(c.record(thing).category.has_value());
+  EXPECT_EQ(c.objects[static_cast<std::size_t>(thing)].taken, Category::kWindow);
+}
+
+TEST(ReportRulesTest, SizeCheckTakesALabelNoModelOfThatSizeHas) {
+  ReportCase c;
+  AddSizes(&c.extents);
+  c.structure.walls.clear();
+  const int small_bed = c.AddUnfinished(1, Box({1, 1, 0}, {1.4, 1.45, 0.5}), Category::kBed);
+  const int stand = c.AddUnfinished(2, Box({3, 1, 0}, {3.4, 1.45, 0.5}), Category::kNightStand);
+  const int unknown = c.AddUnfinished(3, Box({5, 1, 0}, {5.1, 1.1, 0.1}), Category::kChair);  // no chair model
+  c.Apply(SizeCheckRule(SizeOptions()));
+  EXPECT_FALSE(c.record(small_bed).category.has_value());
+  EXPECT_EQ(c.objects[static_cast<std::size_t>(small_bed)].taken, Category::kBed);
+  EXPECT_EQ(c.record(stand).category, Category::kNightStand);
+  EXPECT_EQ(c.record(unknown).category, Category::kChair);
+}
+
+TEST(ReportRulesTest, CurtainMustHangTakesCurtainLabelsOffThingsThatHangOnNoWall) {
+  ReportCase c;
+  const int panel = c.AddUnfinished(1, Pleats(0.1, 0.6, 1.3, 0.02, 2.2), Category::kCurtain);
+  Points wardrobe = Pane(0.6, 2.2, 3.6, 0.0, 2.0);
+  Append(Pane(0.3, 2.2, 3.6, 2.0, 2.0), &wardrobe);
+  const int front = c.AddUnfinished(2, wardrobe, Category::kCurtain);
+  c.Apply(CurtainMustHangRule(WallOpeningOptions()));
+  EXPECT_EQ(c.record(panel).category, Category::kCurtain);
+  EXPECT_FALSE(c.record(front).category.has_value());
+  EXPECT_EQ(LastChange(c.record(front)).rule, "curtain_must_hang");
+}
+
+TEST(ReportRulesTest, RelabelReplacesATakenLabelByAConfidentMatchThatFits) {
+  ReportCase c;
+  AddSizes(&c.extents);
+  c.structure.walls.clear();
+  const Points stand_points = Box({1, 1, 0}, {1.4, 1.45, 0.5});
+  const int stand = c.AddUnfinished(1, stand_points, Category::kBed,
+                                    {Match(Category::kBed, 0.95, 1), Match(Category::kNightStand, 0.94, 2)});
+  const int unsure = c.AddUnfinished(2, Box({3, 1, 0}, {3.4, 1.45, 0.5}), Category::kBed,
+                                     {Match(Category::kNightStand, 0.5, 2)});
+  const int kept = c.AddUnfinished(3, Box({5, 1, 0}, {5.4, 1.45, 0.5}), Category::kNightStand,
+                                   {Match(Category::kBed, 0.99, 1)});
+  c.Apply(SizeCheckRule(SizeOptions()));
+  c.Apply(RelabelRule(SizeOptions()));
+  EXPECT_EQ(c.record(stand).category, Category::kNightStand);
+  EXPECT_EQ(c.record(stand).model, "m2");
+  EXPECT_EQ(LastChange(c.record(stand)).rule, "relabel");
+  EXPECT_FALSE(c.record(unsure).category.has_value());
+  EXPECT_EQ(c.record(kept).category, Category::kNightStand);  // no label was taken
+}
+
+TEST(ReportRulesTest, JoinWindowPiecesReportsTheSashesOfOneWindowAsOne) {
+  ReportCase c;
+  const int left = c.AddUnfinished(1, Pane(-0.06, 1.0, 1.48, 0.9, 2.0), Category::kWindow);
+  const int right = c.AddUnfinished(2, Pane(-0.06, 1.52, 2.2, 0.9, 2.0), Category::kWindow);
+  const int other = c.AddUnfinished(3, Pane(-0.06, 3.0, 3.8, 0.9, 2.0), Category::kWindow);
+  c.sources.best_of_category[{{1, 2}, Category::kWindow}] = Match(Category::kWindow, 0.8, 4);
+  c.Apply(JoinWindowPiecesRule(WallOpeningOptions()));
+  // The larger piece hosts; the grown window takes the model fitting both.
+  EXPECT_FALSE(c.objects[static_cast<std::size_t>(left)].reported());
+  EXPECT_EQ(c.record(right).labels, (std::vector<std::int32_t>{1, 2}));
+  EXPECT_EQ(c.record(right).model, "m4");
+  EXPECT_TRUE(c.objects[static_cast<std::size_t>(other)].reported());
+}
+
+TEST(ReportRulesTest, CurtainsOverWindowsNameAndJoinThePanelsOverAWindow) {
+  ReportCase c;
+  c.AddUnfinished(1, Pane(-0.06, 1.0, 2.0, 0.9, 2.0), Category::kWindow);
+  const int a = c.AddUnfinished(2, Pleats(0.1, 0.6, 1.3, 0.02, 2.2), Category::kDoor);
+  const int b = c.AddUnfinished(3, Pleats(0.1, 1.7, 2.4, 0.02, 2.2), Category::kCurtain);
+  const int chair = c.AddUnfinished(4, Box({1.0, 3.0, 0.0}, {1.5, 3.5, 0.9}), Category::kChair);
+  c.sources.best_of_category[{{2}, Category::kCurtain}] = Match(Category::kCurtain, 0.6, 7);
+  c.Apply(CurtainsOverWindowsRule(WallOpeningOptions()));
+  // The door-labelled panel is a curtain; the two panels over the window are one curtain, hosted by
+  // the one with more points.
+  const std::size_t host = c.objects[static_cast<std::size_t>(a)].reported() ? a : b;
+  const std::size_t joined = host == static_cast<std::size_t>(a) ? b : a;
+  EXPECT_FALSE(c.objects[joined].reported());
+  EXPECT_EQ(c.objects[host].record.category, Category::kCurtain);
+  EXPECT_EQ(c.objects[host].record.labels, (std::vector<std::int32_t>{2, 3}));
+  EXPECT_EQ(c.record(chair).category, Category::kChair);
+}
+
+TEST(ReportRulesTest, DropSmallTakesLabelsFromObjectsUnderTheMinimum) {
+  ReportCase c;
+  const int tiny = c.AddUnfinished(1, Box({1, 1, 0}, {1.05, 1.05, 0.05}), Category::kLamp);
+  const int big = c.AddUnfinished(2, Box({2, 1, 0}, {3, 2, 1}), Category::kBed);
+  const int none = c.AddUnfinished(3, Box({5, 1, 0}, {5.05, 1.05, 0.05}), std::nullopt);
+  ASSERT_LT(c.sources.component_points[1].size(), 500u);
+  ASSERT_GE(c.sources.component_points[2].size(), 500u);
+  c.Apply(DropSmallRule(500));
+  EXPECT_FALSE(c.record(tiny).category.has_value());
+  EXPECT_EQ(LastChange(c.record(tiny)).from, Category::kLamp);
+  EXPECT_EQ(c.record(big).category, Category::kBed);
+  EXPECT_TRUE(c.record(none).label_changes.empty());
+}
+
+TEST(ReportRulesTest, DropUnsureTakesLabelsOfUnfinishedObjectsBelowTheObjectness) {
+  ReportCase c;
+  const int unsure = c.AddUnfinished(1, Box({1, 1, 0}, {1.5, 1.5, 0.5}), Category::kChair, {}, 0.6);
+  const int sure = c.AddUnfinished(2, Box({3, 1, 0}, {3.5, 1.5, 0.5}), Category::kChair, {}, 0.85);
+  const int done = c.AddCompleted(3, Box({5, 1, 0}, {5.5, 1.5, 0.5}), Match(Category::kChair, 0.5, 1));
+  c.Apply(DropUnsureRule(0.8));
+  EXPECT_FALSE(c.record(unsure).category.has_value());
+  EXPECT_EQ(LastChange(c.record(unsure)).rule, "drop_unsure");
+  EXPECT_EQ(c.record(sure).category, Category::kChair);
+  EXPECT_EQ(c.record(done).category, Category::kChair);  // completed objects are their model
+}
+
+TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
+  // A door label on a cabinet-deep thing: door_depth takes it and relabel gives it the confident
+  // match; in the other order relabel finds nothing taken yet and the label is gone at the end.
+  const auto run = [](const std::vector<std::string>& rules) {
+    ReportCase c;
+    AddSizes(&c.extents);
+    c.extents.Add(Category::kDresser, {0.9, 1.1});
+    const int o = c.AddUnfinished(1, Box({1.0, 2.5, 0}, {1.6, 3.3, 0.9}), Category::kDoor,
+                                  {Match(Category::kDoor, 0.96, 1), Match(Category::kDresser, 0.95, 2)});
+    ReportOptions options;
+    options.rules = rules;
+    const ReportPipeline pipeline(options);
+    EXPECT_EQ(pipeline.rule_names(), rules);
+    pipeline.Run(c.Context(), &c.objects);
+    return c.record(o).category;
+  };
+  EXPECT_EQ(run({"door_depth", "relabel"}), Category::kDresser);
+  EXPECT_EQ(run({"relabel", "door_depth"}), std::nullopt);
+  EXPECT_EQ(run({}), Category::kDoor);
+}
+
+TEST(ReportPipelineTest, DefaultListNamesEveryRuleOnceAndUnknownNamesAreRejected) {
+  const std::vector<std::string> all = AllReportRules();
+  EXPECT_EQ(std::set<std::string>(all.begin(), all.end()).size(), all.size());
+  EXPECT_EQ(DefaultReportRules().size() + 1, all.size());
+  ReportOptions options;
+  for (const auto& name : all) EXPECT_NE(MakeReportRule(name, options), nullptr) << name;
+  EXPECT_TRUE(ReportPipeline(options).needs_category_extents());
+  options.rules = {"door_depth", "window_magic"};
+  EXPECT_THROW(options.Validate(), ConfigError);
+  options.rules = {"door_depth", "door_depth"};
+  EXPECT_THROW(options.Validate(), ConfigError);
+  options.rules = {"door_depth"};
+  EXPECT_FALSE(ReportPipeline(options).needs_category_extents());
+}
+
+}  // namespace
+}  // namespace objscan::scanning
