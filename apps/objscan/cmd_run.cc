@@ -44,8 +44,8 @@ struct RunArgs {
 constexpr int kDefaultDatabaseVariants = 8;
 // Every style of each category's generator in the built-in database, each style's models the size
 // medoids of its pool models (database_builder.h). Over the 60 procedural rooms of seeds 1-12, every
-// style gave coverage 72.4% against 69.1% with the first eight seeds (session 21); the medoids
-// brought shelves and filing cabinets of the rooms' middle heights into it (session 24).
+// style gave coverage 72.4% against 69.1% with the first eight seeds (docs/results/db-sampling-2026-11-24.md); the medoids
+// brought shelves and filing cabinets of the rooms' middle heights into it (be00778, 2026-11-25).
 constexpr recognition::ProceduralSampling kDefaultDatabaseSampling = recognition::ProceduralSampling::kStyleMedoids;
 
 std::string CacheDir() {

@@ -60,8 +60,8 @@ struct RecognitionOptions {
   // as scanner.space.facing_min_cos says; needs a SpaceEvidence and the entry's keypoint normals). A
   // wardrobe against a wall never shows its back panel, nor any face its bottom few centimetres:
   // without this, eq. (1) holds those against a model and prefers models without them (open-backed
-  // shelves). On by default since session 24 (with scanner.space.facing_min_cos = -1: walls explain
-  // any face near them); false = the paper's eq. (1).
+  // shelves). On by default since be00778 (2026-11-25), with scanner.space.facing_min_cos = -1 (walls
+  // explain any face near them); false = the paper's eq. (1).
   bool structure_completeness = true;
   AlignmentOptions alignment;
 

@@ -176,7 +176,7 @@ TEST_F(RecognizerTest, StructureExplainsModelSurfaceInTheCompletenessTerm) {
 
   RecognitionOptions options;
   options.structure_completeness = true;
-  EXPECT_TRUE(RecognitionOptions().structure_completeness) << "the default since session 24";
+  EXPECT_TRUE(RecognitionOptions().structure_completeness) << "the default since be00778 (2026-11-25)";
   const Recognizer explained(*db_, options);
   EXPECT_DOUBLE_EQ(explained.Match(q, entry).objectness.objectness, base.objectness.objectness);  // no evidence
   const SimilarModel m = explained.Match(q, entry, &wall);

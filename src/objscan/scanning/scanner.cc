@@ -455,6 +455,23 @@ struct Scanner::State {
     return static_cast<double>(near) >= fraction * static_cast<double>(c.points.size());
   }
 
+  // The components of an object given up for good (stalled, out of views): objects made mostly of them
+  // later are given up too (scanner.given_up_surface_share).
+  void GiveUpSurface(const segmentation::PostSegmentedObject& r) {
+    if (config.scanner.given_up_surface_share <= 0.0) return;
+    given_up_labels.insert(r.component_ids.begin(), r.component_ids.end());
+  }
+  bool MostlyGivenUp(const segmentation::PostSegmentedObject& r, std::size_t num_points) const {
+    const double share = config.scanner.given_up_surface_share;
+    if (share <= 0.0 || given_up_labels.empty() || num_points == 0) return false;
+    std::size_t spent = 0;
+    for (auto l : r.component_ids) {
+      if (!given_up_labels.count(l)) continue;
+      if (const segmentation::Component* c = segmenter_graph().Find(l)) spent += c->points.size();
+    }
+    return static_cast<double>(spent) >= share * static_cast<double>(num_points);
+  }
+
   // Points, centre and area of a post-segmented object.
   void ObjectGeometry(const segmentation::PostSegmentedObject& r, std::vector<Eigen::Vector3f>* points,
                       geometry::Aabb3* bounds, double* area_m2, std::size_t* num_points) const {
@@ -501,12 +518,18 @@ struct Scanner::State {
         std::size_t n = 0;
         ObjectGeometry(r, nullptr, &bounds, &area, &n);
         if (static_cast<int>(n) < config.scanner.min_object_elements) continue;
+        if (MostlyGivenUp(r, n)) {
+          given_up.insert(id);
+          if (current_ooi == id) current_ooi = -1;
+          continue;
+        }
         const int stall = config.scanner.stall_views;
         const auto history = objectness_history.find(id);
         if (stall > 0 && history != objectness_history.end() && views_spent[id] >= stall &&
             static_cast<int>(history->second.size()) > views_spent[id] - stall &&
             r.objectness - history->second[views_spent[id] - stall] < config.scanner.stall_min_gain) {
           given_up.insert(id);
+          GiveUpSurface(r);
           if (current_ooi == id) current_ooi = -1;
           step->notes.push_back("object " + std::to_string(id) + ": objectness stalled at " +
                                 std::to_string(r.objectness).substr(0, 5) + " over " + std::to_string(stall) +
@@ -533,7 +556,12 @@ struct Scanner::State {
       Stopwatch w;
       const planning::NboResult nbo = planning::SelectNextBestObject(candidates, view, current_ooi, config.nbo);
       Charge(step, &StageTimes::nbo, w.ElapsedMs());
-      for (int id : nbo.budget_spent_ids) given_up.insert(id);
+      for (int id : nbo.budget_spent_ids) {
+        given_up.insert(id);
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+          if (candidates[i].id == id) GiveUpSurface(post.objects[candidate_object[i]]);
+        }
+      }
       if (nbo.status != planning::NboStatus::kOk) return false;
       int k = -1;
       for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -945,6 +973,7 @@ struct Scanner::State {
   std::map<std::int32_t, std::uint64_t> noise_labels;  // label -> match revision when found noise
   std::map<std::int32_t, std::pair<std::uint64_t, double>> match_revision;  // label -> (revision, size)
   std::set<int> given_up;
+  std::set<std::int32_t> given_up_labels;  // components of objects given up for good
   std::set<int> given_up_no_view;  // given up because no NBV candidate was valid (subset of given_up)
   std::vector<Eigen::Vector2d> stuck_lookarounds;  // where the robot looked around on getting stuck
   std::map<int, int> views_spent;

@@ -23,8 +23,8 @@ using mapping::testing::LookAt;
 
 struct Scanned {
   mapping::SurfaceMap map;
-  eval::GroundTruthVotes votes;  // each element's ground-truth instance
   IncrementalSegmenter segmenter;
+  eval::GroundTruthVotes votes;  // each element's ground-truth instance
 };
 
 void Scan(const AnalyticWorld& world, const std::vector<geometry::Pose3>& poses, std::uint64_t seed, Scanned* s) {

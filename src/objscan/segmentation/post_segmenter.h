@@ -67,7 +67,7 @@ struct PostSegmenterOptions {
   // against a small model (a lamp's stem as a radio), which blocks every pairwise merge with it.
   // false = the paper (objects are the graph cut's groups). A gain of 0.03 keeps a small object off a
   // large neighbour, whose objectness a small addition barely moves (measured on procedural rooms,
-  // docs/results/procedural-3seeds-session4.md).
+  // docs/results/procedural-3seeds-2026-11-21-start-fix-object-merge.md).
   bool merge_objects = true;
   double object_merge_min_gain = 0.03;
   AlphaExpansionOptions alpha_expansion;
