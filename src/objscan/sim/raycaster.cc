@@ -120,8 +120,18 @@ struct Raycaster::Impl {
     for (std::size_t base = 0; base < count; base += kPacket) {
       const int n = static_cast<int>(std::min<std::size_t>(kPacket, count - base));
       for (int i = 0; i < kPacket; ++i) {
+        // Every lane holds a well-formed ray, also the inactive ones: Embree's hybrid kernels may
+        // check lanes beyond the valid mask (an assertion in Debian's build).
         valid[i] = 0;
+        packet.org_x[i] = packet.org_y[i] = packet.org_z[i] = 0.f;
+        packet.dir_x[i] = 1.f;
+        packet.dir_y[i] = packet.dir_z[i] = 0.f;
+        packet.tnear[i] = 0.f;
         packet.tfar[i] = 0.f;
+        packet.time[i] = 0.f;
+        packet.mask[i] = ~0u;
+        packet.id[i] = static_cast<unsigned>(i);
+        packet.flags[i] = 0;
         if (i >= n) continue;
         const float* a = from_xyz + 3 * (base + i);
         const float* b = to_xyz + 3 * (base + i);
