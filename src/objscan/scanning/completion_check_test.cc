@@ -42,8 +42,8 @@ TEST(CompletionCheckTest, AWardrobeSeenBeyondTheDoorModelThatCompletedIt) {
 TEST(CompletionCheckTest, OptionsAreChecked) {
   CompletionCheckOptions options;
   EXPECT_NO_THROW(options.Validate());
-  options.max_outside_share = -1.0;  // off
-  EXPECT_NO_THROW(options.Validate());
+  options.max_outside_share = -1.0;  // off is leaving reopen_outgrown out of report.rules
+  EXPECT_THROW(options.Validate(), std::exception);
   options.max_outside_share = 1.5;
   EXPECT_THROW(options.Validate(), std::exception);
   options.max_outside_share = 0.3;
