@@ -1,6 +1,6 @@
 // End-to-end test of `objscan run`: a short scan of a procedural room with a small database writes
-// every file of the output folder, its coverage.ply agrees with run.json's metrics, and the same
-// seed gives the same run.json apart from timings.
+// every file of the output folder, its coverage.ply and the report's error classes agree with
+// run.json's metrics, and the same seed gives the same run.json apart from timings.
 #include <gtest/gtest.h>
 
 #include "run_command.h"
@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "objscan/eval/report.h"
 #include "objscan/io/ply.h"
 
 namespace {
@@ -61,6 +62,14 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
   EXPECT_LE(run["steps"].size(), 8u);
   EXPECT_GT(run["metrics"]["views"].get<int>(), 0);
   EXPECT_EQ(WithoutTimings(run), WithoutTimings(ReadJson(dir / "b" / "run.json")));
+
+  // The report's error classes, rebuilt from run.json alone, agree with the run's own matching:
+  // `correct` is precision's numerator, and every output falls in one class.
+  const objscan::eval::RunSummary summary = objscan::eval::ParseRunJson(
+      objscan::testing::ReadFile(dir / "a" / "run.json"), "a", "ours", (dir / "a" / "run.json").string());
+  ASSERT_TRUE(summary.has_error_analysis);
+  EXPECT_EQ(summary.errors.Count(objscan::eval::OutputOutcome::kCorrect), run["metrics"]["true_positives"].get<int>());
+  EXPECT_EQ(summary.errors.Total(), run["metrics"]["output_objects"].get<int>());
 
   // coverage.ply holds V_S: as many voxels as the instances list, as many visible ones as the
   // visible rate says, and the covered ones (visible and detected) give the coverage rate.

@@ -242,6 +242,8 @@ int RunBench(const BenchArgs& a) {
   j["runs_complete_in_report"] = report.complete_runs;
   j["runs_failed_in_report"] = report.failed_runs;
   j["wall_s"] = total_seconds;
+  // Where the reported objects go wrong, per method and overall (also in the report's results.json).
+  if (!report.errors.empty()) j["reported_objects"] = nlohmann::ordered_json::parse(eval::ReportedObjectsJson(report));
   std::printf("%s\n", j.dump(2).c_str());
   return failed > 0 ? 1 : 0;
 }

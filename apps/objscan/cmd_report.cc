@@ -1,5 +1,5 @@
 // `objscan report DIR...`: rebuild the tables and plots from finished runs or bench shards
-// (results.md, results.json, SVG + PNG plots in FIRST_DIR/report/ or --out).
+// (results.md, results.json, confusion.csv, SVG + PNG plots in FIRST_DIR/report/ or --out).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -29,6 +29,8 @@ int RunReport(const ReportArgs& a) {
   j["methods"] = report.methods;
   j["scene_categories"] = report.scene_categories;
   j["files"] = files;
+  // Where the reported objects go wrong, per method and overall (also in the report's results.json).
+  if (!report.errors.empty()) j["reported_objects"] = nlohmann::ordered_json::parse(eval::ReportedObjectsJson(report));
   std::printf("%s\n", j.dump(2).c_str());
   return 0;
 }

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -14,6 +15,9 @@
 #include "objscan/eval/benchmark.h"
 #include "objscan/eval/plot.h"
 #include "objscan/io/atomic_file.h"
+#include "objscan/scanning/system_config.h"
+#include "objscan/world/category.h"
+#include "objscan/world/scene.h"
 
 namespace objscan::eval {
 namespace fs = std::filesystem;
@@ -61,6 +65,61 @@ double Num(const Json& j, const char* key) {
   return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
 }
 int Int(const Json& j, const char* key) { return static_cast<int>(std::lround(Num(j, key))); }
+
+world::Category CategoryNamed(const std::string& name, const std::string& source) {
+  const std::optional<world::Category> c = world::ParseCategory(name);
+  if (!c) throw InputError(source + ": unknown category \"" + name + "\"");
+  return *c;
+}
+
+// The error analysis of a run from its objects and ground-truth instances. The outputs are taken as
+// RunEvaluator takes them (labelled; complete, or objectness >= the run's
+// eval.recognized_min_objectness) and in the same order, so the classes agree with its precision.
+void AnalyseRunErrors(const Json& j, const std::string& source, RunSummary* r) {
+  std::vector<GroundTruthInstance> truth;
+  std::set<world::Category> database;
+  for (const Json& i : j["metrics"]["instances"]) {
+    if (!i.is_object() || !i.contains("instance") || !i["instance"].is_number()) continue;
+    GroundTruthInstance g;
+    g.instance_id = i["instance"].get<int>();
+    g.category = CategoryNamed(i.value("category", std::string()), source);
+    // Older run.json files do not say; the database knew the categories of nearly every instance.
+    if (!i.contains("in_database") || (i["in_database"].is_boolean() && i["in_database"].get<bool>())) {
+      database.insert(g.category);
+    }
+    truth.push_back(g);
+  }
+  double min_objectness = scanning::EvaluationOptions{}.recognized_min_objectness;
+  if (j.contains("config") && j["config"].is_object() && j["config"].contains("eval") &&
+      j["config"]["eval"].is_object()) {
+    const Json& eval = j["config"]["eval"];
+    if (eval.contains("recognized_min_objectness") && eval["recognized_min_objectness"].is_number()) {
+      min_objectness = eval["recognized_min_objectness"].get<double>();
+    }
+  }
+  std::vector<OutputObject> outputs;
+  if (j.contains("objects") && j["objects"].is_array()) {
+    for (const Json& o : j["objects"]) {
+      if (!o.is_object() || !o.contains("category") || !o["category"].is_string()) continue;
+      const bool complete = o.contains("complete") && o["complete"].is_boolean() && o["complete"].get<bool>();
+      if (!complete && Num(o, "objectness") < min_objectness) continue;
+      OutputObject out;
+      out.category = CategoryNamed(o["category"].get<std::string>(), source);
+      out.majority_instance = o.contains("gt_instance") && o["gt_instance"].is_number() ? o["gt_instance"].get<int>()
+                                                                                       : world::kNoInstance;
+      outputs.push_back(out);
+    }
+  }
+  ErrorAnalysis analysis;
+  try {
+    analysis = AnalyseErrors(truth, outputs, std::vector<world::Category>(database.begin(), database.end()));
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  r->has_error_analysis = true;
+  r->errors = analysis.breakdown;
+  r->confusion = std::move(analysis.confusion);
+}
 
 }  // namespace
 
@@ -143,6 +202,7 @@ RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, co
         c.reported_as = it != largest.end() ? it->second.second : "not reported";
         r.instances.push_back(c);
       }
+      AnalyseRunErrors(j, source, &r);
     }
     if (m.contains("rand_index_per_view") && m["rand_index_per_view"].is_array()) {
       for (const Json& p : m["rand_index_per_view"]) {
@@ -426,6 +486,26 @@ Report BuildReport(std::vector<RunSummary> runs) {
     report.object_categories.push_back(o);
   }
   report.coverage_breakdown = CoverageBreakdown(Select(report, "ours", "all", true));
+  // Error classes and confusion matrices: summed counts (so shares weigh each reported object the
+  // same, unlike the per-scene means of Table 1).
+  MethodErrors all;
+  all.method = "all";
+  for (const auto& m : report.methods) {
+    MethodErrors e;
+    e.method = m;
+    for (const RunSummary* r : Select(report, m, "all", true)) {
+      if (!r->has_error_analysis) continue;
+      ++e.runs;
+      e.breakdown.Add(r->errors);
+      e.confusion.Add(r->confusion);
+    }
+    if (e.runs == 0) continue;
+    all.runs += e.runs;
+    all.breakdown.Add(e.breakdown);
+    all.confusion.Add(e.confusion);
+    report.errors.push_back(std::move(e));
+  }
+  if (all.runs > 0) report.errors.push_back(std::move(all));
   return report;
 }
 
@@ -567,7 +647,82 @@ const std::vector<std::string>& AblationMethods() {
   return kMethods;
 }
 
+Json BreakdownJson(const ErrorBreakdown& b) {
+  Json counts = Json::object(), shares = Json::object();
+  for (OutputOutcome o : OutputOutcomesInReportOrder()) {
+    counts[OutputOutcomeName(o)] = b.Count(o);
+    shares[OutputOutcomeName(o)] = b.Share(o);
+  }
+  return Json{{"reported", b.Total()}, {"counts", counts}, {"shares", shares}};
+}
+
+Json ConfusionJson(const ConfusionMatrix& m) {
+  const std::vector<std::string> rows = m.Rows(), columns = m.Columns();
+  Json counts = Json::array();
+  for (const auto& row : rows) {
+    Json line = Json::array();
+    for (const auto& column : columns) line.push_back(m.Count(row, column));
+    counts.push_back(line);
+  }
+  return Json{{"rows", rows}, {"columns", columns}, {"counts", counts}};
+}
+
+// The errors of the methods alone (without "all"), and the "all" entry (null when there is none).
+std::vector<const MethodErrors*> ErrorsPerMethod(const Report& report) {
+  std::vector<const MethodErrors*> out;
+  for (const auto& e : report.errors) {
+    if (e.method != "all") out.push_back(&e);
+  }
+  return out;
+}
+const MethodErrors* ErrorsOverall(const Report& report) {
+  for (const auto& e : report.errors) {
+    if (e.method == "all") return &e;
+  }
+  return nullptr;
+}
+
+Json ReportedObjects(const Report& report) {
+  Json classes = Json::array();
+  for (OutputOutcome o : OutputOutcomesInReportOrder()) classes.push_back(OutputOutcomeName(o));
+  Json by_method = Json::array();
+  for (const MethodErrors* e : ErrorsPerMethod(report)) {
+    Json row{{"method", e->method}, {"runs", e->runs}};
+    row.update(BreakdownJson(e->breakdown));
+    by_method.push_back(row);
+  }
+  Json overall = nullptr;
+  if (const MethodErrors* e = ErrorsOverall(report)) {
+    overall = Json{{"runs", e->runs}};
+    overall.update(BreakdownJson(e->breakdown));
+  }
+  return Json{{"classes", classes}, {"by_method", by_method}, {"overall", overall}};
+}
+
 }  // namespace
+
+std::string ReportedObjectsJson(const Report& report) { return ReportedObjects(report).dump(2) + "\n"; }
+
+std::string ConfusionCsv(const Report& report) {
+  const MethodErrors* overall = ErrorsOverall(report);
+  if (overall == nullptr) return std::string();
+  // One header for every method: the columns of the sum of all matrices.
+  const std::vector<std::string> columns = overall->confusion.Columns();
+  std::ostringstream csv;
+  csv << "method,ground_truth";
+  for (const auto& c : columns) csv << ',' << c;
+  csv << ",total\n";
+  std::vector<const MethodErrors*> written = ErrorsPerMethod(report);
+  if (written.size() > 1) written.push_back(overall);
+  for (const MethodErrors* e : written) {
+    for (const auto& row : e->confusion.Rows()) {
+      csv << e->method << ',' << row;
+      for (const auto& c : columns) csv << ',' << e->confusion.Count(row, c);
+      csv << ',' << e->confusion.RowTotal(row) << '\n';
+    }
+  }
+  return csv.str();
+}
 
 std::string ReportJson(const Report& report) {
   Json j;
@@ -620,6 +775,12 @@ std::string ReportJson(const Report& report) {
                              {"seen_not_recognized", missed}});
   }
   j["coverage_breakdown"] = breakdown;
+  if (!report.errors.empty()) {
+    j["reported_objects"] = ReportedObjects(report);
+    Json confusion = Json::object();
+    for (const auto& e : report.errors) confusion[e.method] = ConfusionJson(e.confusion);
+    j["confusion"] = confusion;
+  }
   // Table 3 (seconds for ours, minutes for the paper).
   Json table3 = Json::array();
   if (report.by_method.count("ours")) {
@@ -695,6 +856,7 @@ std::string ReportJson(const Report& report) {
       row["coverage_rate"] = r.coverage_rate;
       row["coverage_quality"] = r.coverage_quality;
       row["compute_s"] = r.timing_s.total;
+      if (r.has_error_analysis) row["reported_objects"] = BreakdownJson(r.errors);
     }
     per_run.push_back(row);
   }
@@ -713,6 +875,16 @@ std::string Fix(double v, int decimals) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
   return buf;
+}
+std::string OutcomeLabel(OutputOutcome outcome) {
+  switch (outcome) {
+    case OutputOutcome::kCorrect: return "correct";
+    case OutputOutcome::kWrongCategory: return "wrong category";
+    case OutputOutcome::kDuplicatePiece: return "duplicate piece";
+    case OutputOutcome::kOtherObject: return "`other` object";
+    case OutputOutcome::kBackgroundOrStructure: return "background or structure";
+  }
+  return OutputOutcomeName(outcome);
 }
 std::string Label(const std::string& category) {
   if (category == "all") return "**All**";
@@ -781,6 +953,66 @@ std::string ReportMarkdown(const Report& report) {
     } else {
       md << " | | |\n";
     }
+  }
+
+  if (!report.errors.empty()) {
+    md << "\n## Where the reported objects go wrong (summed over runs)\n\n";
+    md << "Every reported labelled object (an output of recall and precision) in exactly one class: correct (a "
+          "true positive, precision's numerator: the right category on a ground-truth object no earlier output "
+          "matched); wrong category (on an unmatched object of another category); duplicate piece (on an object "
+          "another output matched); `other` object (on an unmatched object of category `other`); background or "
+          "structure (on no ground-truth object). Counts summed over the runs, shares of the reported objects, so "
+          "the correct share is the pooled precision, not Table 1's mean over scenes.\n\n";
+    md << "| Method | runs | reported |";
+    for (OutputOutcome o : OutputOutcomesInReportOrder()) md << ' ' << OutcomeLabel(o) << " |";
+    md << "\n|---|---|---|";
+    for (std::size_t k = 0; k < OutputOutcomesInReportOrder().size(); ++k) md << "---|";
+    md << '\n';
+    std::vector<const MethodErrors*> rows = ErrorsPerMethod(report);
+    if (rows.size() > 1) rows.push_back(ErrorsOverall(report));
+    for (const MethodErrors* e : rows) {
+      md << "| " << (e->method == "all" ? std::string("**All methods**") : "`" + e->method + "`") << " | " << e->runs
+         << " | " << e->breakdown.Total() << " |";
+      for (OutputOutcome o : OutputOutcomesInReportOrder()) {
+        md << ' ' << e->breakdown.Count(o) << " (" << Pct(e->breakdown.Share(o)) << ") |";
+      }
+      md << '\n';
+    }
+    // The matrix of "ours" (the method the report is about), else of the first method.
+    const MethodErrors* shown = rows.front();
+    for (const MethodErrors* e : rows) {
+      if (e->method == "ours") shown = e;
+    }
+    const ConfusionMatrix& m = shown->confusion;
+    const std::vector<std::string> columns = m.Columns();
+    md << "\n## Confusion matrix (`" << shown->method << "`, summed over runs; every method in confusion.csv)\n\n";
+    md << "Rows: the ground-truth category of the object a reported object lies on (its majority instance; "
+          "background/structure when none). Columns: the reported category; missed counts the ground-truth "
+          "objects no reported object lies on. A ground-truth object with two reported pieces counts twice in its "
+          "row.\n\n";
+    md << "| ground truth \\ reported |";
+    for (const auto& c : columns) md << ' ' << Label(c) << " |";
+    md << " total |\n|---|";
+    for (std::size_t k = 0; k <= columns.size(); ++k) md << "---|";
+    md << '\n';
+    for (const auto& row : m.Rows()) {
+      md << "| " << Label(row) << " |";
+      for (const auto& c : columns) {
+        const int n = m.Count(row, c);
+        // The diagonal in bold, zeros left blank so the errors stand out.
+        if (n == 0) {
+          md << "  |";
+        } else if (row == c) {
+          md << " **" << n << "** |";
+        } else {
+          md << ' ' << n << " |";
+        }
+      }
+      md << ' ' << m.RowTotal(row) << " |\n";
+    }
+    md << "| total |";
+    for (const auto& c : columns) md << ' ' << m.ColumnTotal(c) << " |";
+    md << " |\n";
   }
 
   if (!report.coverage_breakdown.empty()) {
@@ -854,16 +1086,24 @@ std::string ReportMarkdown(const Report& report) {
     }
   }
   md << "\n## Runs\n\n| Scene | Method | terminated | steps | views | travel m | recall | precision | RI | "
-        "coverage | compute s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "coverage | compute s | reported: correct / wrong / duplicate / other / background |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : report.runs) {
     if (r.failed) {
       md << "| " << r.scene_id << " | `" << r.method << "` | **failed** (exit " << r.exit_code
-         << ", see stderr.txt) | | | | | | | | |\n";
+         << ", see stderr.txt) | | | | | | | | | |\n";
       continue;
     }
     md << "| " << r.scene_id << " | `" << r.method << "` | " << r.terminated << " | " << r.steps << " | " << r.views
        << " | " << Fix(r.travel_m, 1) << " | " << Pct(r.recall) << " | " << Pct(r.precision) << " | "
-       << Fix(r.rand_index, 3) << " | " << Pct(r.coverage_rate) << " | " << Fix(r.timing_s.total, 1) << " |\n";
+       << Fix(r.rand_index, 3) << " | " << Pct(r.coverage_rate) << " | " << Fix(r.timing_s.total, 1) << " | ";
+    if (r.has_error_analysis) {
+      md << r.errors.Total() << ": ";
+      for (OutputOutcome o : OutputOutcomesInReportOrder()) {
+        md << (o == OutputOutcome::kCorrect ? "" : " / ") << r.errors.Count(o);
+      }
+    }
+    md << " |\n";
   }
   md << "\n## Plots\n\n";
   for (const char* p : {"table1_recognition", "fig10a_rand_index", "fig10b_rand_index_views", "fig11a_coverage_rate_views",
@@ -883,6 +1123,11 @@ std::vector<std::string> WriteReport(const Report& report, const std::string& ou
   io::WriteFileAtomically((dir / "results.json").string(), ReportJson(report));
   io::WriteFileAtomically((dir / "results.md").string(), ReportMarkdown(report));
   written = {"results.json", "results.md"};
+  const std::string confusion = ConfusionCsv(report);
+  if (!confusion.empty()) {
+    io::WriteFileAtomically((dir / "confusion.csv").string(), confusion);
+    written.push_back("confusion.csv");
+  }
   auto save = [&](const auto& plot, const std::string& name) {
     SavePlot(plot, (dir / name).string());
     written.push_back(name + ".svg");

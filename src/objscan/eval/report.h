@@ -3,11 +3,15 @@
 // bench folder or several shards), aggregates them like the paper's Results section (Tables 1-3,
 // Figs. 10, 11, 13, 14) with the paper's published figures beside ours, and writes results.md,
 // results.json and SVG + PNG plots. results.json depends only on the runs found (sorted by scene and
-// method), so shards merged give the same file as one bench over the whole suite.
+// method), so shards merged give the same file as one bench over the whole suite. With ground truth
+// it also says where the reported objects go wrong (error_analysis.h): confusion.csv, and the error
+// classes of every reported labelled object per method.
 #include <array>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "objscan/eval/error_analysis.h"
 
 namespace objscan::eval {
 
@@ -56,6 +60,12 @@ struct RunSummary {
   std::vector<CoveragePoint> coverage;
   std::vector<std::pair<int, double>> rand_index_per_view;  // (views seen, Rand Index) per analysis
   RunTiming timing_s;
+  // The reported labelled objects (the outputs of recall and precision: labelled, and complete or
+  // with objectness >= the run's eval.recognized_min_objectness) by error class, and the confusion
+  // matrix; when run.json lists the ground-truth instances (metrics.instances).
+  bool has_error_analysis = false;
+  ErrorBreakdown errors;
+  ConfusionMatrix confusion;
 };
 
 // Parses run.json text. `scene_id` and `method` name the run (from its folder). Throws InputError
@@ -119,6 +129,14 @@ struct CoverageBreakdownRow {
   std::vector<std::pair<std::string, double>> missed_as;
 };
 
+// Error classes and confusion matrix summed over the complete runs of a method that have them.
+struct MethodErrors {
+  std::string method;  // a method, or "all": every method together
+  int runs = 0;
+  ErrorBreakdown breakdown;
+  ConfusionMatrix confusion;
+};
+
 // A mean curve over the runs of a group: y at each x (runs that ended earlier hold their last value).
 struct Curve {
   std::string label;
@@ -131,6 +149,8 @@ struct Report {
   std::map<std::string, std::vector<SceneCategoryStats>> by_method;  // per scene category, then "all"
   std::vector<ObjectCategoryStats> object_categories;  // method "ours"
   std::vector<CoverageBreakdownRow> coverage_breakdown;  // method "ours", largest surface first
+  // Per method in report order, then "all"; empty when no run has an error analysis.
+  std::vector<MethodErrors> errors;
   std::vector<RunSummary> runs;
   int complete_runs = 0, failed_runs = 0;
 };
@@ -146,8 +166,16 @@ Curve MeanQualityOverNbos(const std::vector<const RunSummary*>& runs);
 
 std::string ReportJson(const Report& report);
 std::string ReportMarkdown(const Report& report);
-// Writes results.md, results.json and the plots (SVG + PNG) into `out_dir` (created when missing).
-// Returns the files written (relative to out_dir).
+// JSON text of the error classes per method and overall, counts and shares (results.json's
+// "reported_objects"; the commands print it too).
+std::string ReportedObjectsJson(const Report& report);
+// CSV text of the confusion matrices: columns method, ground_truth, one per reported category of
+// any method, missed, total; one line per (method, ground-truth row), "all" lines only when the
+// report has several methods. Empty when no run has an error analysis.
+std::string ConfusionCsv(const Report& report);
+// Writes results.md, results.json, confusion.csv (when some run has an error analysis) and the
+// plots (SVG + PNG) into `out_dir` (created when missing). Returns the files written (relative to
+// out_dir).
 std::vector<std::string> WriteReport(const Report& report, const std::string& out_dir);
 
 }  // namespace objscan::eval

@@ -347,6 +347,175 @@ TEST(ReportTest, WritesTablesAndPlots) {
   EXPECT_NE(svg.find("preseg-only"), std::string::npos);
 }
 
+// Three finished runs in a bench folder, with the reported objects and ground-truth instances of
+// run.json (error_analysis_test.cc has the same room 1 as typed data):
+//  - bedroom-1 / ours: chairs 1, 2, bed 3, plant 4 (`other`), lamp 5, table 6, box 10 (`other`), and
+//    a wall 9 (not listed: run.json lists non-structural instances). Reported: chair on 1 (correct),
+//    chair on 1 (duplicate), radio on 2 (wrong), chair on 4 (other), table on no instance
+//    (background), bed on the wall 9 (structure), lamp on 3 (duplicate of the bed reported next),
+//    bed on 3 (correct), table on 42 (background), table on 6 (correct); not counted: an incomplete
+//    sofa below the default objectness 0.5, and an unlabelled object on lamp 5. Lamp 5, box 10 missed.
+//  - bedroom-2 / ours (eval.recognized_min_objectness 0.25): chair 7, sofa 8. Sofa on 8 (correct), an
+//    incomplete chair on 8 at objectness 0.3 (counted: a duplicate); chair 7 missed.
+//  - bedroom-1 / frontier: chair 1, reported as a chair (correct).
+std::vector<std::pair<fs::path, std::string>> ErrorAnalysisRuns() {
+  auto run = [](const std::string& spec, double recall, int gt, int outputs, int tp, const nlohmann::json& instances,
+                const nlohmann::json& objects) {
+    Fixture f;
+    f.spec = spec;
+    f.recall = recall;
+    f.gt = gt;
+    f.outputs = outputs;
+    f.tp = tp;
+    f.precision = outputs ? double(tp) / outputs : 0.0;
+    nlohmann::json j = nlohmann::json::parse(f.Json());
+    j["metrics"]["instances"] = instances;
+    j["objects"] = objects;
+    return j;
+  };
+  auto instance = [](int id, const std::string& category, bool in_database) {
+    return nlohmann::json{{"instance", id}, {"category", category}, {"in_database", in_database},
+                          {"surface_voxels", 10}, {"visible_voxels", 5}, {"matched", false}};
+  };
+  auto object = [](int id, const nlohmann::json& category, int gt_instance, bool complete = true,
+                   double objectness = 0.97) {
+    nlohmann::json o{{"id", id}, {"category", category}, {"complete", complete}, {"objectness", objectness},
+                     {"points", 100}};
+    if (gt_instance > 0) o["gt_instance"] = gt_instance;
+    return o;
+  };
+  const nlohmann::json room1 = run(
+      "procedural:bedroom:1", 0.5, 5, 10, 3,
+      {instance(1, "chair", true), instance(2, "chair", true), instance(3, "bed", true), instance(4, "other", false),
+       instance(5, "lamp", true), instance(6, "table", true), instance(10, "other", false)},
+      {object(1, "chair", 1), object(2, "chair", 1), object(3, "radio", 2), object(4, "chair", 4),
+       object(5, "table", 0), object(6, "bed", 9), object(7, "lamp", 3), object(8, "bed", 3), object(9, "table", 42),
+       object(10, "table", 6), object(11, "sofa", 2, false, 0.3), object(12, nullptr, 5)});
+  nlohmann::json room2 =
+      run("procedural:bedroom:2", 0.5, 2, 2, 1, {instance(7, "chair", true), instance(8, "sofa", true)},
+          {object(1, "sofa", 8), object(2, "chair", 8, false, 0.3)});
+  room2["config"] = {{"eval", {{"recognized_min_objectness", 0.25}}}};
+  const nlohmann::json frontier =
+      run("procedural:bedroom:1", 1.0, 1, 1, 1, nlohmann::json::array({instance(1, "chair", true)}),
+          nlohmann::json::array({object(1, "chair", 1)}));
+  return {{fs::path("runs") / "bedroom-1" / "ours", room1.dump(2)},
+          {fs::path("runs") / "bedroom-2" / "ours", room2.dump(2)},
+          {fs::path("runs") / "bedroom-1" / "frontier", frontier.dump(2)}};
+}
+
+TEST(ReportTest, ErrorClassesAndConfusionMatrixOfReportedObjects) {
+  TempDir dir;
+  for (const auto& [path, text] : ErrorAnalysisRuns()) WriteText(dir.path() / path / "run.json", text);
+  const Report report = BuildReport(CollectRuns({dir.path().string()}));
+  ASSERT_EQ(report.runs.size(), 3u);
+  using O = OutputOutcome;
+  // Per run: the classes sum to the run's outputs, and `correct` is its true positives.
+  for (const RunSummary& r : report.runs) {
+    SCOPED_TRACE(r.scene_id + "/" + r.method);
+    ASSERT_TRUE(r.has_error_analysis);
+    EXPECT_EQ(r.errors.Count(O::kCorrect), r.true_positives);
+    EXPECT_EQ(r.errors.Total(), r.output_objects);
+  }
+  const RunSummary& room1 = report.runs[1];  // sorted by (scene, method): frontier before ours
+  ASSERT_EQ(room1.method, "ours");
+  EXPECT_EQ(room1.errors.counts, (std::array<int, kNumOutputOutcomes>{3, 3, 2, 1, 1}));
+
+  // Per method and overall, summed.
+  ASSERT_EQ(report.errors.size(), 3u);
+  EXPECT_EQ(report.errors[0].method, "ours");
+  EXPECT_EQ(report.errors[0].runs, 2);
+  const ErrorBreakdown& ours = report.errors[0].breakdown;
+  EXPECT_EQ(ours.Count(O::kCorrect), 4);
+  EXPECT_EQ(ours.Count(O::kWrongCategory), 1);
+  EXPECT_EQ(ours.Count(O::kDuplicatePiece), 3);
+  EXPECT_EQ(ours.Count(O::kOtherObject), 1);
+  EXPECT_EQ(ours.Count(O::kBackgroundOrStructure), 3);
+  EXPECT_EQ(report.errors[1].method, "frontier");
+  EXPECT_EQ(report.errors[1].breakdown.Count(O::kCorrect), 1);
+  EXPECT_EQ(report.errors[2].method, "all");
+  EXPECT_EQ(report.errors[2].runs, 3);
+  EXPECT_EQ(report.errors[2].breakdown.Total(), 13);
+  EXPECT_EQ(report.errors[2].breakdown.Count(O::kCorrect), 5);
+
+  // confusion.csv, cell by cell: one header (the columns of every method), the rows of each method,
+  // then "all".
+  const auto files = WriteReport(report, (dir.path() / "report").string());
+  EXPECT_NE(std::find(files.begin(), files.end(), "confusion.csv"), files.end());
+  EXPECT_EQ(ReadText(dir.path() / "report" / "confusion.csv"),
+            "method,ground_truth,bed,chair,lamp,radio,sofa,table,missed,total\n"
+            "ours,bed,1,0,1,0,0,0,0,2\n"
+            "ours,chair,0,2,0,1,0,0,1,4\n"
+            "ours,lamp,0,0,0,0,0,0,1,1\n"
+            "ours,sofa,0,1,0,0,1,0,0,2\n"
+            "ours,table,0,0,0,0,0,1,0,1\n"
+            "ours,other,0,1,0,0,0,0,1,2\n"
+            "ours,background/structure,1,0,0,0,0,2,0,3\n"
+            "frontier,chair,0,1,0,0,0,0,0,1\n"
+            "all,bed,1,0,1,0,0,0,0,2\n"
+            "all,chair,0,3,0,1,0,0,1,5\n"
+            "all,lamp,0,0,0,0,0,0,1,1\n"
+            "all,sofa,0,1,0,0,1,0,0,2\n"
+            "all,table,0,0,0,0,0,1,0,1\n"
+            "all,other,0,1,0,0,0,0,1,2\n"
+            "all,background/structure,1,0,0,0,0,2,0,3\n");
+
+  // results.md: the classes per method and overall, the matrix of `ours`, the classes per run.
+  const std::string md = ReadText(dir.path() / "report" / "results.md");
+  EXPECT_NE(md.find("| `ours` | 2 | 12 | 4 (33.33%) | 1 (8.33%) | 3 (25.00%) | 1 (8.33%) | 3 (25.00%) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| **All methods** | 3 | 13 | 5 (38.46%) | 1 (7.69%) | 3 (23.08%) | 1 (7.69%) | 3 (23.08%) |"),
+            std::string::npos);
+  EXPECT_NE(md.find("## Confusion matrix (`ours`"), std::string::npos);
+  EXPECT_NE(md.find("| ground truth \\ reported | Bed | Chair | Lamp | Radio | Sofa | Table | Missed | total |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| Chair |  | **2** |  | 1 |  |  | 1 | 4 |"), std::string::npos);
+  EXPECT_NE(md.find("| Background/structure | 1 |  |  |  |  | 2 |  | 3 |"), std::string::npos);
+  EXPECT_NE(md.find("| total | 2 | 4 | 1 | 1 | 1 | 3 | 3 | |"), std::string::npos);
+  EXPECT_NE(md.find("| 10: 3 / 1 / 2 / 1 / 3 |"), std::string::npos);
+
+  // results.json and the JSON the commands print.
+  const nlohmann::json j = nlohmann::json::parse(ReadText(dir.path() / "report" / "results.json"));
+  const nlohmann::json& reported = j["reported_objects"];
+  EXPECT_EQ(reported["classes"], nlohmann::json({"correct", "wrong_category", "duplicate_piece", "other_object",
+                                                 "background_or_structure"}));
+  EXPECT_EQ(reported["by_method"][0]["method"], "ours");
+  EXPECT_EQ(reported["by_method"][0]["reported"], 12);
+  EXPECT_DOUBLE_EQ(reported["by_method"][0]["shares"]["duplicate_piece"].get<double>(), 0.25);
+  EXPECT_EQ(reported["overall"]["counts"]["correct"], 5);
+  EXPECT_EQ(reported, nlohmann::json::parse(ReportedObjectsJson(report)));
+  EXPECT_EQ(j["confusion"]["frontier"]["rows"], nlohmann::json({"chair"}));
+  EXPECT_EQ(j["confusion"]["frontier"]["counts"], nlohmann::json({{1}}));
+  EXPECT_EQ(j["confusion"]["ours"]["columns"].back(), "missed");
+  EXPECT_EQ(j["per_run"][1]["reported_objects"]["counts"]["background_or_structure"], 3);
+}
+
+TEST(ReportTest, NoErrorAnalysisWithoutInstancesAndUnknownCategoriesThrow) {
+  TempDir dir;
+  // Older run.json files (no metrics.instances): no classes, no matrix, no confusion.csv.
+  Fixture f;
+  WriteText(dir.path() / "runs" / "bedroom-1" / "ours" / "run.json", f.Json());
+  const Report report = BuildReport(CollectRuns({dir.path().string()}));
+  EXPECT_FALSE(report.runs[0].has_error_analysis);
+  EXPECT_TRUE(report.errors.empty());
+  EXPECT_EQ(ConfusionCsv(report), "");
+  const auto files = WriteReport(report, (dir.path() / "report").string());
+  EXPECT_EQ(std::find(files.begin(), files.end(), "confusion.csv"), files.end());
+  EXPECT_FALSE(fs::exists(dir.path() / "report" / "confusion.csv"));
+  EXPECT_EQ(ReportMarkdown(report).find("Confusion matrix"), std::string::npos);
+  EXPECT_FALSE(nlohmann::json::parse(ReportJson(report)).contains("reported_objects"));
+  // A category objscan does not know is bad input, named with its file.
+  nlohmann::json j = nlohmann::json::parse(f.Json());
+  j["metrics"]["instances"] = {{{"instance", 1}, {"category", "spaceship"}}};
+  try {
+    ParseRunJson(j.dump(), "x", "ours", "odd/run.json");
+    FAIL() << "no throw";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("odd/run.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("spaceship"), std::string::npos) << e.what();
+  }
+}
+
 TEST(PlotTest, NiceTicksCoverTheRangeWithRoundSteps) {
   const auto t = NiceTicks(0.0, 1.0, 6);
   ASSERT_EQ(t.size(), 6u);
