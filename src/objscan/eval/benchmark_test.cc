@@ -122,16 +122,21 @@ TEST(SuiteTest, UnknownSuiteOrEmptyFolderThrows) {
 
 TEST(MethodsTest, AllAndSelection) {
   const auto all = AllBenchMethods();
-  ASSERT_EQ(all.size(), 8u);
+  ASSERT_EQ(all.size(), 9u);
   EXPECT_EQ(all.front().name, "ours");
   EXPECT_TRUE(all.front().config_sets.empty());
+  EXPECT_TRUE(all.front().config_file.empty());
+  // The paper's method as published runs config/paper.yaml.
+  const auto paper = SelectBenchMethods("paper");
+  ASSERT_EQ(paper.size(), 1u);
+  EXPECT_EQ(paper[0].config_file, "paper.yaml");
   const auto some = SelectBenchMethods("frontier,ours,no-size");
   ASSERT_EQ(some.size(), 3u);  // in report order, not in the order given
   EXPECT_EQ(some[0].name, "ours");
   EXPECT_EQ(some[1].name, "no-size");
   EXPECT_EQ(some[1].config_sets, std::vector<std::string>{"nbo.size_weight=0"});
   EXPECT_EQ(some[2].name, "frontier");
-  EXPECT_EQ(SelectBenchMethods("").size(), 8u);
+  EXPECT_EQ(SelectBenchMethods("").size(), 9u);
   EXPECT_TRUE(SelectBenchMethods("db-no-parts")[0].database_without_parts);
   EXPECT_THROW(SelectBenchMethods("ours,fastest"), InputError);
 }
@@ -150,12 +155,12 @@ TEST(JobsTest, SortedAndShardsPartitionTheList) {
   options.seeds_per_category = 2;
   const Suite suite = ResolveSuite("procedural", options);
   const auto jobs = MakeJobs(suite.scenes, AllBenchMethods(), "/out");
-  ASSERT_EQ(jobs.size(), 80u);
+  ASSERT_EQ(jobs.size(), 90u);
   for (std::size_t i = 1; i < jobs.size(); ++i) {
     EXPECT_LT(std::tie(jobs[i - 1].scene.id, jobs[i - 1].method.name), std::tie(jobs[i].scene.id, jobs[i].method.name));
   }
   EXPECT_EQ(jobs[0].run_dir, "/out/runs/" + jobs[0].scene.id + "/" + jobs[0].method.name);
-  for (int n : {1, 3, 7, 80, 100}) {
+  for (int n : {1, 3, 7, 90, 100}) {
     std::multiset<std::string> seen;
     std::size_t smallest = jobs.size(), largest = 0;
     for (int i = 1; i <= n; ++i) {
@@ -204,6 +209,14 @@ TEST(JobsTest, RunCommandArgs) {
                                              "--set",  "nbo.size_weight=3", "--set", "scanner.max_steps=5",
                                              "--set",  "nbo.size_weight=0"};
   EXPECT_EQ(args, expected);  // the method's own override comes last, so it wins
+  // The paper method passes its config file of the config folder.
+  const BenchJob paper{{"s1", "procedural:bedroom:2", "bedroom"}, SelectBenchMethods("paper")[0], "/out/runs/s1/paper"};
+  const auto paper_args = RunCommandArgs(paper, RunCommandOptions());
+  const auto config = std::find(paper_args.begin(), paper_args.end(), "--config");
+  ASSERT_NE(config, paper_args.end());
+  ASSERT_NE(config + 1, paper_args.end());
+  EXPECT_EQ(std::filesystem::path(*(config + 1)).filename(), "paper.yaml");
+  EXPECT_TRUE(std::filesystem::exists(*(config + 1))) << *(config + 1);
 }
 
 TEST(ChildProcessTest, RunsInParallelAndRecordsFailures) {

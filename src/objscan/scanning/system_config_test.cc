@@ -39,5 +39,34 @@ TEST(SystemConfigTest, OverridesApplyAndUnknownKeysAreRejected) {
   EXPECT_THROW(LoadSystemConfig("/nonexistent/objscan.yaml", {}), InputError);
 }
 
+TEST(SystemConfigTest, PaperPresetSwitchesOffWhatGoesBeyondThePaper) {
+  const SystemConfig paper = LoadSystemConfig(ConfigDir() + "/paper.yaml", {});
+  EXPECT_TRUE(paper.report.rules.empty());
+  EXPECT_EQ(paper.scanner.stall_views, 0);
+  EXPECT_DOUBLE_EQ(paper.scanner.given_up_surface_share, 0.0);
+  EXPECT_GE(paper.scanner.structure_residue_fraction, 1.0);
+  EXPECT_FALSE(paper.scanner.coverage_views.enabled);
+  EXPECT_FALSE(paper.recognition.structure_completeness);
+  EXPECT_FALSE(paper.recognition.compose_unions);
+  EXPECT_EQ(paper.postsegmentation.smoothness, "paper");
+  EXPECT_FALSE(paper.postsegmentation.split_instances);
+  EXPECT_FALSE(paper.postsegmentation.merge_objects);
+  EXPECT_EQ(paper.presegmentation.adjacency_cell_voxels, 2);
+  // The paper's parameters stay as they are in the default.
+  const SystemConfig ours;
+  EXPECT_EQ(paper.recognition.num_similar_models, 5);
+  EXPECT_DOUBLE_EQ(paper.postsegmentation.complete_objectness, 0.96);
+  EXPECT_DOUBLE_EQ(paper.postsegmentation.noise_objectness, 0.05);
+  EXPECT_EQ(paper.nbv.candidates.num_candidates, ours.nbv.candidates.num_candidates);
+  EXPECT_EQ(config::ToJson(config::Dump(paper.sensor)), config::ToJson(config::Dump(ours.sensor)));
+}
+
+TEST(SystemConfigTest, ReportRulesAreAListOfKnownNames) {
+  const SystemConfig c = LoadSystemConfig("", {"report.rules=[door_depth, drop_small]"});
+  EXPECT_EQ(c.report.rules, (std::vector<std::string>{"door_depth", "drop_small"}));
+  EXPECT_TRUE(LoadSystemConfig("", {"report.rules=[]"}).report.rules.empty());
+  EXPECT_THROW(LoadSystemConfig("", {"report.rules=[door_depth, teleport]"}), ConfigError);
+}
+
 }  // namespace
 }  // namespace objscan::scanning
