@@ -163,24 +163,31 @@ void ParseInto(const RawConfig::Entry& e, const std::string& key, std::string* o
   *out = e.value;
 }
 
-void ParseInto(const RawConfig::Entry& e, const std::string& key, std::vector<double>* out) {
-  std::string t = Trim(e.value);
+namespace {
+
+// The items of a sequence value: "[a, b]" or "a,b" (how RawConfig stores a YAML sequence); none for
+// an empty one.
+std::vector<std::string> ListItems(const std::string& value) {
+  std::string t = Trim(value);
   if (!t.empty() && t.front() == '[' && t.back() == ']') t = t.substr(1, t.size() - 2);
-  out->clear();
-  if (Trim(t).empty()) return;
+  std::vector<std::string> items;
+  if (Trim(t).empty()) return items;
   std::stringstream ss(t);
   std::string item;
-  while (std::getline(ss, item, ',')) out->push_back(ParseDouble(item, e, key));
+  while (std::getline(ss, item, ',')) items.push_back(item);
+  return items;
+}
+
+}  // namespace
+
+void ParseInto(const RawConfig::Entry& e, const std::string& key, std::vector<double>* out) {
+  out->clear();
+  for (const std::string& item : ListItems(e.value)) out->push_back(ParseDouble(item, e, key));
 }
 
 void ParseInto(const RawConfig::Entry& e, const std::string& key, std::vector<std::string>* out) {
-  std::string t = Trim(e.value);
-  if (!t.empty() && t.front() == '[' && t.back() == ']') t = t.substr(1, t.size() - 2);
   out->clear();
-  if (Trim(t).empty()) return;
-  std::stringstream ss(t);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
+  for (std::string item : ListItems(e.value)) {
     item = Trim(item);
     if (item.size() >= 2 && (item.front() == '"' || item.front() == '\'') && item.back() == item.front()) {
       item = item.substr(1, item.size() - 2);

@@ -6,6 +6,7 @@
 
 #include "objscan/mapping/planes.h"
 #include "objscan/recognition/test_shapes.h"
+#include "objscan/scanning/testing/size_fixtures.h"
 
 namespace objscan::scanning {
 namespace {
@@ -18,24 +19,8 @@ std::vector<Eigen::Vector3f> Box(const Eigen::Vector3d& lo, const Eigen::Vector3
   return points;
 }
 
-// Night stands 0.5 m tall with a 0.6-0.7 m footprint diagonal; beds 0.6 m tall, 2.2-2.6 m.
-recognition::CategoryExtents Extents() {
-  recognition::CategoryExtents extents;
-  extents.Add(Category::kNightStand, {0.5, 0.6});
-  extents.Add(Category::kNightStand, {0.5, 0.7});
-  extents.Add(Category::kBed, {0.6, 2.2});
-  extents.Add(Category::kBed, {0.6, 2.6});
-  return extents;
-}
-
-recognition::SizePlausibilityOptions Options() {
-  recognition::SizePlausibilityOptions options;
-  options.min_ratio = 0.8;
-  options.max_ratio = 1.2;
-  // Whole point sets: a sparse piece below (eight corner points) would be trimmed away in a union.
-  options.extent_trim_fraction = 0.0;
-  return options;
-}
+recognition::CategoryExtents Extents() { return testing::NightStandAndBedSizes(); }
+recognition::SizePlausibilityOptions Options() { return testing::TightSizeOptions(); }
 
 TEST(RegroupTest, APieceTooSmallForItsLabelJoinsTheNeighbourItCompletes) {
   // A night stand (0.4 x 0.45 x 0.5 m, diagonal 0.6 m) in two pieces: its body, labelled night

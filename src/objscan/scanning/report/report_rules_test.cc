@@ -10,6 +10,7 @@
 #include "objscan/mapping/planes.h"
 #include "objscan/recognition/test_shapes.h"
 #include "objscan/scanning/report/report_pipeline.h"
+#include "objscan/scanning/testing/size_fixtures.h"
 #include "objscan/scanning/testing/wall_shapes.h"
 
 namespace objscan::scanning {
@@ -195,19 +196,10 @@ TEST(ReportRulesTest, AbsorbFragmentsJoinsAPieceLyingOnItsNeighboursModel) {
   EXPECT_EQ(reported.size(), 2u);
 }
 
-// Night stands 0.5 m tall with a 0.6-0.7 m footprint diagonal; beds 0.6 m tall, 2.2-2.6 m.
-recognition::SizePlausibilityOptions SizeOptions() {
-  recognition::SizePlausibilityOptions options;
-  options.min_ratio = 0.8;
-  options.max_ratio = 1.2;
-  options.extent_trim_fraction = 0.0;
-  return options;
-}
+recognition::SizePlausibilityOptions SizeOptions() { return testing::TightSizeOptions(); }
+// Night stands and beds (size_fixtures.h), lamps 1.4-1.7 m tall and radios 0.2-0.3 m.
 void AddSizes(recognition::CategoryExtents* extents) {
-  extents->Add(Category::kNightStand, {0.5, 0.6});
-  extents->Add(Category::kNightStand, {0.5, 0.7});
-  extents->Add(Category::kBed, {0.6, 2.2});
-  extents->Add(Category::kBed, {0.6, 2.6});
+  *extents = testing::NightStandAndBedSizes();
   extents->Add(Category::kLamp, {1.4, 0.4});
   extents->Add(Category::kLamp, {1.7, 0.5});
   extents->Add(Category::kRadio, {0.2, 0.4});
