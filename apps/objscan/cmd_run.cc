@@ -33,6 +33,7 @@ struct RunArgs {
   std::string config_file;
   std::vector<std::string> sets;
   std::string model_path;
+  std::string category_map;
   bool print_config = false;
   bool quiet = false;
 };
@@ -95,6 +96,7 @@ namespace {
 int RunScan(const RunArgs& args) {
   std::vector<std::string> sets = args.sets;
   if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
+  if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
   const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
   if (args.print_config) {
     std::fputs(scanning::ToYaml(config).c_str(), stdout);
@@ -141,7 +143,7 @@ int RunScan(const RunArgs& args) {
 void AddRunCommand(CLI::App& root, RunFn* run) {
   auto args = std::make_shared<RunArgs>();
   auto* cmd = root.add_subcommand("run", "Scan a scene autonomously (NBO + NBV) and write a labelled reconstruction");
-  cmd->add_option("--scene", args->scene, "scene SPEC: .world, .yaml/.json scene file, mesh, or procedural:CATEGORY:SEED")
+  cmd->add_option("--scene", args->scene, "scene SPEC: .world, .yaml/.json scene file, ScanNet scan folder or *_vh_clean_2.ply, mesh, or procedural:CATEGORY:SEED")
       ->capture_default_str();
   cmd->add_option("--db", args->db, "model database file (default: built-in procedural database, built once and cached)");
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
@@ -149,6 +151,7 @@ void AddRunCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--config", args->config_file, "YAML config file (see config/default.yaml)");
   cmd->add_option("--set", args->sets, "override a config key: section.key=value (repeatable)");
   cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
+  cmd->add_option("--category-map", args->category_map, "category map YAML (sets scene.category_map)");
   cmd->add_flag("--print-config", args->print_config, "print the effective configuration as YAML and exit");
   cmd->add_flag("--quiet", args->quiet, "no progress output on stderr");
   cmd->callback([run, args] { *run = [args] { return RunScan(*args); }; });

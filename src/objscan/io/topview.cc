@@ -74,7 +74,9 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
   // The map covers walls and furniture (the floor quad extends past the walls).
   geometry::Aabb3 extent;
   for (const auto& o : scene.objects()) {
-    if (o.category != world::Category::kFloor) extent.Extend(scene.ObjectBounds(o));
+    if (o.category != world::Category::kFloor && o.category != world::Category::kCeiling) {
+      extent.Extend(scene.ObjectBounds(o));
+    }
   }
   if (extent.Empty()) extent = scene.Bounds();
   if (extent.Empty()) extent.Extend(Eigen::Vector3d(-1, -1, 0)), extent.Extend(Eigen::Vector3d(1, 1, 0));
@@ -105,6 +107,8 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
   std::map<world::Category, int> present;
   for (std::size_t oi = 0; oi < scene.objects().size(); ++oi) {
     const world::SceneObject& o = scene.objects()[oi];
+    // Seen from above a ceiling would hide the rooms it covers.
+    if (o.category == world::Category::kCeiling) continue;
     ++present[o.category];
     const Rgb base = ToRgb(world::CategoryColor(o.category));
     const int layer = LayerOf(o.category);
