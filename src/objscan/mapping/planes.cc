@@ -24,6 +24,8 @@ void StructureOptions::Validate() const {
   config::RequireNonNegative("structure.wall_behind_min_depth_m", wall_behind_min_depth_m);
   config::RequireNonNegative("structure.furniture_top_margin_m", furniture_top_margin_m);
   config::RequireInRange("structure.wall_max_count", wall_max_count, 0, 1000);
+  config::RequirePositive("structure.ceiling_min_height_m", ceiling_min_height_m);
+  config::RequireNonNegative("structure.ceiling_min_area_m2", ceiling_min_area_m2);
 }
 
 bool StructureResult::InsideWalls(const Eigen::Vector3d& p, double margin_m) const {
@@ -140,6 +142,44 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     result.has_floor = count > 0;
     result.floor_height_m = count > 0 ? sum / count : z_peak;
     result.floor_area_m2 = count * voxel_area;
+  }
+
+  // Ceiling: peak of the height histogram (1 cm bins) of downward elements high above the floor.
+  {
+    const double z_min = (result.has_floor ? result.floor_height_m : 0.0) + options_.ceiling_min_height_m;
+    std::unordered_map<std::int64_t, double> ceiling_hist;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double z = map->position(i).z();
+      if (-normals[i].z() < cos_floor || z < z_min) continue;
+      ceiling_hist[static_cast<std::int64_t>(std::floor(z / bin))] += 1.0;
+    }
+    std::int64_t best_ceiling_bin = 0;
+    double best_ceiling = 0.0;
+    for (const auto& [b, count] : ceiling_hist) {
+      const auto at = [&](std::int64_t k) {
+        const auto it = ceiling_hist.find(k);
+        return it == ceiling_hist.end() ? 0.0 : it->second;
+      };
+      const double s = count + at(b - 1) + at(b + 1);
+      if (s > best_ceiling || (s == best_ceiling && b < best_ceiling_bin)) {
+        best_ceiling = s;
+        best_ceiling_bin = b;
+      }
+    }
+    if (best_ceiling > 0.0 && best_ceiling * voxel_area >= options_.ceiling_min_area_m2) {
+      const double z_peak = (static_cast<double>(best_ceiling_bin) + 0.5) * bin;
+      double sum = 0.0;
+      std::size_t count = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double z = map->position(i).z();
+        if (-normals[i].z() >= cos_floor && std::fabs(z - z_peak) < tol) {
+          sum += z;
+          ++count;
+        }
+      }
+      result.has_ceiling = count > 0;
+      result.ceiling_height_m = count > 0 ? sum / count : z_peak;
+    }
   }
 
   // Walls: Hough votes over (azimuth of the horizontal normal, offset along it).
@@ -367,6 +407,7 @@ void StructureDetector::TagElements(SurfaceMap* map, StructureResult* result) co
   const double cos_tag = std::cos(kTagMaxAngleDeg * M_PI / 180.0);
   result->num_floor_elements = 0;
   result->num_wall_elements = 0;
+  result->num_ceiling_elements = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p = map->position(i).cast<double>();
     const Eigen::Vector3d nr = map->normal(i).cast<double>();
@@ -374,6 +415,9 @@ void StructureDetector::TagElements(SurfaceMap* map, StructureResult* result) co
     if (result->has_floor && nr.z() >= cos_floor && std::fabs(p.z() - result->floor_height_m) < tol) {
       s = Structure::kFloor;
       ++result->num_floor_elements;
+    } else if (result->has_ceiling && -nr.z() >= cos_floor && std::fabs(p.z() - result->ceiling_height_m) < tol) {
+      s = Structure::kCeiling;
+      ++result->num_ceiling_elements;
     } else {
       for (const WallPlane& w : result->walls) {
         if (std::fabs(w.SignedDistance(p)) < tol && nr.dot(w.normal) > cos_tag) {
