@@ -1,4 +1,5 @@
 // `objscan run`: scan a scene autonomously and write the DESIGN.md output folder.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdint>
@@ -93,6 +94,13 @@ std::string DefaultDatabasePath(bool verbose) {
 
 namespace {
 
+// Peak resident set size of this process so far (Linux reports ru_maxrss in KiB).
+double PeakRssMb() {
+  struct rusage usage {};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
 int RunScan(const RunArgs& args) {
   std::vector<std::string> sets = args.sets;
   if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
@@ -126,15 +134,17 @@ int RunScan(const RunArgs& args) {
   outputs.metrics = &metrics;
   outputs.scene_spec = args.scene;
   outputs.database_path = db_path;
+  outputs.peak_rss_mb = PeakRssMb();
   eval::WriteRunOutputs(args.out, outputs);
   scanner.WriteNavigationMap(args.out + "/navmap.png");
 
   std::printf(
       "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "
-      "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f}\n",
+      "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f, "
+      "\"peak_rss_mb\": %.1f}\n",
       args.out.c_str(), scanning::TerminationName(record.terminated), record.views, record.objects.size(),
       metrics.recall, metrics.precision, metrics.coverage_rate, metrics.rand_index, record.travel_m,
-      record.timing_s.total);
+      record.timing_s.total, outputs.peak_rss_mb);
   return 0;
 }
 

@@ -172,6 +172,7 @@ std::string RunJson(const RunOutputInputs& in) {
                        {"fuse", r.timing_s.fuse},           {"segment", r.timing_s.segment},
                        {"recognize", r.timing_s.recognize}, {"nbo", r.timing_s.nbo},
                        {"nbv", r.timing_s.nbv},             {"navigate_sim", r.timing_s.navigate_sim}};
+  if (in.peak_rss_mb > 0.0) j["peak_rss_mb"] = std::round(in.peak_rss_mb * 10.0) / 10.0;
   return j.dump(2) + "\n";
 }
 
