@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include "objscan/geometry/pose.h"
 #include "objscan/io/gazebo_world.h"
 #include "objscan/io/scene_spec.h"
+#include "objscan/io/test_util.h"
 #include "shared_data.h"
 
 namespace objscan::io {
@@ -84,6 +87,34 @@ TEST(AwsSmallHouseTest, PosesAreTheWorldFilesModelPoses) {
   EXPECT_NEAR(bed.min_m.z(), 0.0, 0.02);
   EXPECT_GT(std::max(bed.Size().x(), bed.Size().y()), 1.8);
   EXPECT_LT(std::max(bed.Size().x(), bed.Size().y()), 2.6);
+}
+
+// The world as shipped has its RoomCeiling commented out; with it back the house has a ceiling,
+// which the AWS map makes structure.
+TEST(AwsSmallHouseTest, TheRestoredCeilingIsStructure) {
+  OBJSCAN_REQUIRE_SHARED_DATA(data);
+  std::ifstream in(data + "/aws-small-house/worlds/small_house.world");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string world = text.str();
+  const std::string opening = "<!-- Remove ceiling for easier view";
+  const auto begin = world.find(opening);
+  ASSERT_NE(begin, std::string::npos);
+  const auto end = world.find("-->", begin);
+  world = world.substr(0, begin) + world.substr(begin + opening.size(), end - begin - opening.size()) +
+          world.substr(end + 3);
+  testing::TempDir dir;
+  testing::WriteText(dir.File("small_house_with_ceiling.world"), world);
+  SceneLoadOptions options;
+  options.model_path = data + "/aws-small-house/models";
+  const world::Scene scene = LoadScene(dir.File("small_house_with_ceiling.world"), options);
+  ASSERT_EQ(scene.objects().size(), 89u);
+  const world::SceneObject* ceiling = ByName(scene, "RoomCeiling_01_001");
+  ASSERT_NE(ceiling, nullptr);
+  EXPECT_EQ(ceiling->category, world::Category::kCeiling);
+  EXPECT_TRUE(ceiling->IsStructural());
+  EXPECT_EQ(scene.NumFurniture(), LoadHouse(data).NumFurniture());
+  EXPECT_NEAR(ceiling->T_world_object.translation().z(), 2.5, 1e-12);
 }
 
 }  // namespace
