@@ -120,7 +120,13 @@ struct Raycaster::Impl {
     for (std::size_t base = 0; base < count; base += kPacket) {
       const int n = static_cast<int>(std::min<std::size_t>(kPacket, count - base));
       for (int i = 0; i < kPacket; ++i) {
+        // Every lane is written: Embree's debug checks read tnear of lanes marked invalid too, and
+        // stack garbage there (a negative tnear) aborts the query.
         valid[i] = 0;
+        packet.org_x[i] = packet.org_y[i] = packet.org_z[i] = 0.f;
+        packet.dir_x[i] = 1.f;
+        packet.dir_y[i] = packet.dir_z[i] = 0.f;
+        packet.tnear[i] = 0.f;
         packet.tfar[i] = 0.f;
         if (i >= n) continue;
         const float* a = from_xyz + 3 * (base + i);
