@@ -242,7 +242,7 @@ class WorldLoader {
     for (const XMLElement* e : model_elems) {
       std::unique_ptr<ModelNode> node = std::string(e->Name()) == "include"
                                             ? ExpandInclude(*e, path_, 0)
-                                            : BuildNode(*e, path_, ReadPose(*e, Where(ModelName(*e, path_))),
+                                            : BuildNode(*e, path_, ReadPose(*e, Where(NameOf(*e, path_))),
                                                         Attribute(*e, "placement_frame"), 0);
       if (node == nullptr) continue;  // unresolved include, listed (allow_missing)
       if (deleted.count(node->name)) continue;
@@ -311,7 +311,8 @@ class WorldLoader {
     missing_.push_back(what + " in " + parent + " (" + file + ", line " + std::to_string(e.GetLineNum()) + ")");
   }
 
-  std::string ModelName(const XMLElement& e, const std::string& file) const {
+  // The name attribute of a model, link, frame or joint; required.
+  std::string NameOf(const XMLElement& e, const std::string& file) const {
     const std::string name = Attribute(e, "name");
     if (name.empty()) throw InputError(file + ": <" + e.Name() + "> without a name" + Line(e));
     return name;
@@ -349,7 +350,7 @@ class WorldLoader {
   }
 
   void AddFrame(const XMLElement& frame, const std::string& file, const std::string& scope_frame, FrameGraph* graph) {
-    const std::string name = ModelName(frame, file);
+    const std::string name = NameOf(frame, file);
     const std::string where = file + ": <frame> '" + name + "'";
     std::string attached_to = Attribute(frame, "attached_to");
     if (attached_to.empty()) attached_to = scope_frame;
@@ -368,7 +369,7 @@ class WorldLoader {
     auto node = std::make_unique<ModelNode>();
     node->elem = &model;
     node->file = file;
-    node->name = ModelName(model, file);
+    node->name = NameOf(model, file);
     node->pose = pose;
     node->placement_frame = placement_frame;
     const std::string where = file + ": model '" + node->name + "'";
@@ -377,7 +378,7 @@ class WorldLoader {
     for (const XMLElement* e = model.FirstChildElement(); e; e = e->NextSiblingElement()) {
       const std::string tag = e->Name();
       if (tag == "link") {
-        const std::string link_name = ModelName(*e, file);
+        const std::string link_name = NameOf(*e, file);
         const std::string link_where = where + " link '" + link_name + "'";
         node->frames->Add(link_name, ReadPose(*e, link_where), kModelFrame, link_where);
         node->links.push_back(e);
@@ -403,7 +404,7 @@ class WorldLoader {
     }
     // Joints are frames too (default: relative to their child link, which may be nested "A::link").
     for (const XMLElement* joint : joints) {
-      const std::string joint_name = ModelName(*joint, file);
+      const std::string joint_name = NameOf(*joint, file);
       const std::string joint_where = where + " joint '" + joint_name + "'";
       node->frames->Add(joint_name, ReadPose(*joint, joint_where), ElementText(joint->FirstChildElement("child")),
                         joint_where);
@@ -483,7 +484,7 @@ class WorldLoader {
 
   void ReadState(const XMLElement& state) {
     for (const XMLElement* m = state.FirstChildElement("model"); m; m = m->NextSiblingElement("model")) {
-      const std::string name = ModelName(*m, path_);
+      const std::string name = NameOf(*m, path_);
       state_[name] = ReadStateModel(*m, path_ + ": <state> model '" + name + "'");
     }
   }
@@ -505,7 +506,7 @@ class WorldLoader {
       }
     }
     for (const XMLElement* n = m.FirstChildElement("model"); n; n = n->NextSiblingElement("model")) {
-      const std::string nested_name = ModelName(*n, path_);
+      const std::string nested_name = NameOf(*n, path_);
       poses.nested[nested_name] = ReadStateModel(*n, where + " model '" + nested_name + "'");
     }
     return poses;
