@@ -195,9 +195,11 @@ void WriteRunTopView(const std::string& path, const RunOutputInputs& in) {
   std::set<int> categories_present;
   const int dot = std::max(1, static_cast<int>(std::ceil(map.voxel_size_m() / mpp)));
   for (std::size_t e : order) {
+    const int cat = category_id[e];
+    // Seen from above the ceiling would hide the rooms under it (as in objscan scene --topview).
+    if (cat == world::CategoryId(world::Category::kCeiling)) continue;
     const Eigen::Vector2d p = to_px.ToPixel(map.position(e).cast<double>());
     io::Rgb color;
-    const int cat = category_id[e];
     if (cat == world::CategoryId(world::Category::kFloor)) {
       color = {235, 235, 235};
     } else if (cat == world::CategoryId(world::Category::kWall)) {

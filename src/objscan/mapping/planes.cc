@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <unordered_map>
 
@@ -144,41 +145,42 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     result.floor_area_m2 = count * voxel_area;
   }
 
-  // Ceiling: peak of the height histogram (1 cm bins) of downward elements high above the floor.
+  // Ceiling: the lowest height (1 cm bins, summed over three) at which downward elements high above
+  // the floor cover ceiling_min_area_m2. A house's ceiling has several levels (lowered parts,
+  // bulkheads, beams): everything from the lowest level up that does not face up is ceiling (see
+  // TagElements).
   {
     const double z_min = (result.has_floor ? result.floor_height_m : 0.0) + options_.ceiling_min_height_m;
-    std::unordered_map<std::int64_t, double> ceiling_hist;
+    std::map<std::int64_t, double> ceiling_hist;  // ordered: the lowest level is found first
     for (std::size_t i = 0; i < n; ++i) {
       const double z = map->position(i).z();
       if (-normals[i].z() < cos_floor || z < z_min) continue;
       ceiling_hist[static_cast<std::int64_t>(std::floor(z / bin))] += 1.0;
     }
-    std::int64_t best_ceiling_bin = 0;
-    double best_ceiling = 0.0;
+    const auto at = [&](std::int64_t k) {
+      const auto it = ceiling_hist.find(k);
+      return it == ceiling_hist.end() ? 0.0 : it->second;
+    };
     for (const auto& [b, count] : ceiling_hist) {
-      const auto at = [&](std::int64_t k) {
-        const auto it = ceiling_hist.find(k);
-        return it == ceiling_hist.end() ? 0.0 : it->second;
-      };
-      const double s = count + at(b - 1) + at(b + 1);
-      if (s > best_ceiling || (s == best_ceiling && b < best_ceiling_bin)) {
-        best_ceiling = s;
-        best_ceiling_bin = b;
+      if ((count + at(b - 1) + at(b + 1)) * voxel_area < options_.ceiling_min_area_m2) continue;
+      // The level: the fullest bin of this one and the next two.
+      std::int64_t level = b;
+      for (std::int64_t k = b + 1; k <= b + 2; ++k) {
+        if (at(k) > at(level)) level = k;
       }
-    }
-    if (best_ceiling > 0.0 && best_ceiling * voxel_area >= options_.ceiling_min_area_m2) {
-      const double z_peak = (static_cast<double>(best_ceiling_bin) + 0.5) * bin;
+      const double z_peak = (static_cast<double>(level) + 0.5) * bin;
       double sum = 0.0;
-      std::size_t count = 0;
+      std::size_t elements = 0;
       for (std::size_t i = 0; i < n; ++i) {
         const double z = map->position(i).z();
         if (-normals[i].z() >= cos_floor && std::fabs(z - z_peak) < tol) {
           sum += z;
-          ++count;
+          ++elements;
         }
       }
-      result.has_ceiling = count > 0;
-      result.ceiling_height_m = count > 0 ? sum / count : z_peak;
+      result.has_ceiling = elements > 0;
+      result.ceiling_height_m = elements > 0 ? sum / elements : z_peak;
+      break;
     }
   }
 
@@ -415,7 +417,7 @@ void StructureDetector::TagElements(SurfaceMap* map, StructureResult* result) co
     if (result->has_floor && nr.z() >= cos_floor && std::fabs(p.z() - result->floor_height_m) < tol) {
       s = Structure::kFloor;
       ++result->num_floor_elements;
-    } else if (result->has_ceiling && -nr.z() >= cos_floor && std::fabs(p.z() - result->ceiling_height_m) < tol) {
+    } else if (result->has_ceiling && nr.z() < cos_floor && p.z() > result->ceiling_height_m - tol) {
       s = Structure::kCeiling;
       ++result->num_ceiling_elements;
     } else {

@@ -2,8 +2,10 @@
 // Floor and walls of the fused surface (paper §5.1, "Floor and wall"): the floor is the dominant
 // horizontal plane near z = 0, walls are large vertical planes that bound the observed surface
 // (almost nothing lies behind them). Their elements are tagged structural in the SurfaceMap and so
-// stay out of the components C. Beyond the paper (whose rooms are open at the top), a ceiling is the
-// dominant downward-facing horizontal plane well above the floor: structure too, not an object.
+// stay out of the components C. Beyond the paper (whose rooms are open at the top), a ceiling is
+// structure too, not an object: its lowest level is the lowest height well above the floor where
+// downward-facing elements cover ceiling_min_area_m2; every element from that level up that does
+// not face up (upper ceiling levels, the sides of bulkheads and beams) is tagged ceiling.
 #include <Eigen/Core>
 #include <vector>
 
@@ -89,7 +91,7 @@ struct StructureResult {
   double floor_area_m2 = 0.0;
   std::vector<WallPlane> walls;
   bool has_ceiling = false;
-  double ceiling_height_m = 0.0;
+  double ceiling_height_m = 0.0;  // the lowest ceiling level
   std::size_t num_floor_elements = 0;
   std::size_t num_wall_elements = 0;
   std::size_t num_ceiling_elements = 0;
