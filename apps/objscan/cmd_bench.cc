@@ -41,6 +41,7 @@ struct BenchArgs {
   int first_seed = 1;
   std::vector<std::string> sets;
   std::string model_path;
+  std::string category_map;
   bool db_from_worlds = false;
   std::uint64_t seed = 1;
 };
@@ -111,7 +112,13 @@ int RunBench(const BenchArgs& a) {
   if (a.db_from_worlds && !a.db.empty()) throw InputError("--db and --db-from-worlds exclude each other");
   const std::string model_path = JoinPaths(a.model_path, suite.model_path);
   // The configuration must be valid before any run starts (each run checks it again).
-  std::vector<std::string> check_sets = a.sets;
+  std::vector<std::string> run_sets = a.sets;
+  if (!a.category_map.empty()) {
+    // The runs work in their own folders: a map given relative to here is passed on absolute.
+    const std::string map = fs::exists(a.category_map) ? fs::absolute(a.category_map).string() : a.category_map;
+    run_sets.push_back("scene.category_map=" + map);
+  }
+  std::vector<std::string> check_sets = run_sets;
   if (!model_path.empty()) check_sets.push_back("scene.model_path=" + model_path);
   const scanning::SystemConfig config = scanning::LoadSystemConfig("", check_sets);
 
@@ -176,7 +183,7 @@ int RunBench(const BenchArgs& a) {
     eval::RunCommandOptions options;
     options.database = database_of_run[job.run_dir];
     options.model_path = model_path;
-    options.sets = a.sets;
+    options.sets = run_sets;
     options.seed = a.seed;
     eval::ChildCommand c;
     c.argv = {self};
@@ -274,6 +281,7 @@ void AddBenchCommand(CLI::App& root, RunFn* run) {
       ->capture_default_str();
   cmd->add_option("--set", args->sets, "override a config key of every run: key=value (repeatable)");
   cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
+  cmd->add_option("--category-map", args->category_map, "category map YAML of every run (sets scene.category_map)");
   cmd->add_option("--seed", args->seed, "random seed of every run")->capture_default_str();
   cmd->add_flag("--db-from-worlds", args->db_from_worlds,
                 "per test world, a database of the other worlds' models without any model id of the test world");

@@ -1,8 +1,9 @@
 // `objscan db`: build, inspect and evaluate the 3D model database (paper §4.2).
-//   objscan db build --models DIR|procedural --out F.db   -> JSON summary on stdout
+//   objscan db build --models DIR|WORLD...|procedural --out F.db   -> JSON summary on stdout
 //   objscan db info F.db                                  -> JSON counts and model sizes per category
 //   objscan db eval --db F.db [--queries procedural]      -> JSON accuracy, objectness, timing
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,9 @@
 #include "objscan/common/config.h"
 #include "objscan/common/error.h"
 #include "objscan/common/timer.h"
+#include "objscan/eval/benchmark.h"
+#include "objscan/io/scannet.h"
+#include "objscan/io/scene_spec.h"
 #include "objscan/recognition/category_extent.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/database_eval.h"
@@ -23,7 +27,9 @@ namespace objscan::app {
 namespace {
 
 struct DbArgs {
-  std::string models;
+  std::vector<std::string> models;
+  std::string model_path;
+  std::string category_map;
   std::string out;
   std::string info_db;
   std::string eval_db;
@@ -50,12 +56,23 @@ int RunBuild(const DbArgs& a) {
   ApplySets(a.sets, &options);
   std::vector<recognition::ModelSource> sources;
   std::vector<std::string> skipped;
-  if (a.models == "procedural") {
+  namespace fs = std::filesystem;
+  const std::string& first = a.models.front();
+  if (a.models.size() == 1 && first == "procedural") {
     if (a.variants < 1) throw InputError("--variants must be at least 1");
     sources = recognition::ProceduralModelSources(
         a.variants, 0, recognition::ParseProceduralSampling(a.sampling, "--sampling"));
+  } else if (a.models.size() == 1 && fs::is_directory(first) && !io::IsScanNetSpec(first)) {
+    sources = recognition::ModelSourcesFromFolder(first, &skipped);
   } else {
-    sources = recognition::ModelSourcesFromFolder(a.models, &skipped);
+    // Scenes (Gazebo worlds, ScanNet scans, ...): every categorised object model, once per model id.
+    io::SceneLoadOptions load;
+    load.model_path = a.model_path;
+    if (!a.category_map.empty()) load.category_map = a.category_map;
+    std::vector<eval::WorldModels> worlds;
+    for (const std::string& spec : a.models) worlds.push_back({spec, io::LoadScene(spec, load)});
+    sources = eval::ModelDisjointSources(worlds, worlds.size());
+    if (sources.empty()) throw InputError(first + ": no categorised object in the given scenes");
   }
   const Stopwatch watch;
   const recognition::ModelDatabase db =
@@ -149,8 +166,12 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   auto args = std::make_shared<DbArgs>();
   auto* cmd = root.add_subcommand("db", "Build, inspect and evaluate the 3D model database");
   auto* build = cmd->add_subcommand("build", "Build a model database from a folder of models or procedurally");
-  build->add_option("--models", args->models, "DIR of <category>/<name>.{obj,off,ply,dae,stl,glb}, or 'procedural'")
+  build->add_option("--models", args->models,
+                    "DIR of <category>/<name>.{obj,off,ply,dae,stl,glb}, scene SPECs (.world, ScanNet scan, ...: "
+                    "their categorised objects), or 'procedural'")
       ->required();
+  build->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs of --models worlds");
+  build->add_option("--category-map", args->category_map, "category map YAML for --models worlds and scans");
   build->add_option("--out", args->out, "output database file F.db")->required();
   build->add_option("--variants", args->variants, "procedural models per category")->default_str("8");
   build->add_option("--sampling", args->sampling,

@@ -30,6 +30,7 @@ struct RenderArgs {
   int threads = 0;
   bool allow_missing = false;
   std::string model_path;
+  std::string category_map;
 };
 
 // A camera this close to a surface sees nothing sensible (and is most likely inside furniture).
@@ -100,6 +101,7 @@ int RunRender(const RenderArgs& args) {
   io::SceneLoadOptions load_options;
   load_options.allow_missing = args.allow_missing;
   load_options.model_path = args.model_path;
+  if (!args.category_map.empty()) load_options.category_map = args.category_map;
   const world::Scene scene = io::LoadScene(args.scene, load_options);
 
   sim::SensorOptions sensor;
@@ -169,6 +171,7 @@ void AddRenderCommand(CLI::App& root, RunFn* run) {
   cmd->add_flag("--allow-missing", args->allow_missing, "render what can be loaded when meshes are missing");
   cmd->add_option("--model-path", args->model_path,
                   "colon-separated folders searched for model:// URIs after the world's folder");
+  cmd->add_option("--category-map", args->category_map, "category map YAML (instance categories of the render)");
   cmd->callback([run, args] { *run = [args] { return RunRender(*args); }; });
 }
 

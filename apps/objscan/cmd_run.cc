@@ -1,4 +1,5 @@
 // `objscan run`: scan a scene autonomously and write the DESIGN.md output folder.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdint>
@@ -37,6 +38,7 @@ struct RunArgs {
   std::string config_file;
   std::vector<std::string> sets;
   std::string model_path;
+  std::string category_map;
   bool print_config = false;
   bool quiet = false;
 };
@@ -120,9 +122,17 @@ void WriteReportVariants(const std::string& path, const std::vector<eval::Report
   io::WriteFileAtomically(path, out.dump(2) + "\n");
 }
 
+// Peak resident set size of this process so far (Linux reports ru_maxrss in KiB).
+double PeakRssMb() {
+  struct rusage usage {};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
 int RunScan(const RunArgs& args) {
   std::vector<std::string> sets = args.sets;
   if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
+  if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
   const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
   if (args.print_config) {
     std::fputs(scanning::ToYaml(config).c_str(), stdout);
@@ -156,16 +166,18 @@ int RunScan(const RunArgs& args) {
   outputs.metrics = &metrics;
   outputs.scene_spec = args.scene;
   outputs.database_path = db_path;
+  outputs.peak_rss_mb = PeakRssMb();
   eval::WriteRunOutputs(args.out, outputs);
   scanner.WriteNavigationMap(args.out + "/navmap.png");
   if (!variants.empty()) WriteReportVariants(args.out + "/report_variants.json", variants, evaluator, record, &scanner);
 
   std::printf(
       "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "
-      "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f}\n",
+      "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f, "
+      "\"peak_rss_mb\": %.1f}\n",
       args.out.c_str(), scanning::TerminationName(record.terminated), record.views, record.objects.size(),
       metrics.recall, metrics.precision, metrics.coverage_rate, metrics.rand_index, record.travel_m,
-      record.timing_s.total);
+      record.timing_s.total, outputs.peak_rss_mb);
   return 0;
 }
 
@@ -174,7 +186,7 @@ int RunScan(const RunArgs& args) {
 void AddRunCommand(CLI::App& root, RunFn* run) {
   auto args = std::make_shared<RunArgs>();
   auto* cmd = root.add_subcommand("run", "Scan a scene autonomously (NBO + NBV) and write a labelled reconstruction");
-  cmd->add_option("--scene", args->scene, "scene SPEC: .world, .yaml/.json scene file, mesh, or procedural:CATEGORY:SEED")
+  cmd->add_option("--scene", args->scene, "scene SPEC: .world, .yaml/.json scene file, ScanNet scan folder or *_vh_clean_2.ply, mesh, or procedural:CATEGORY:SEED")
       ->capture_default_str();
   cmd->add_option("--db", args->db, "model database file (default: built-in procedural database, built once and cached)");
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
@@ -182,6 +194,7 @@ void AddRunCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--config", args->config_file, "YAML config file (see config/default.yaml)");
   cmd->add_option("--set", args->sets, "override a config key: section.key=value (repeatable)");
   cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
+  cmd->add_option("--category-map", args->category_map, "category map YAML (sets scene.category_map)");
   cmd->add_flag("--print-config", args->print_config, "print the effective configuration as YAML and exit");
   cmd->add_flag("--quiet", args->quiet, "no progress output on stderr");
   cmd->callback([run, args] { *run = [args] { return RunScan(*args); }; });

@@ -20,6 +20,7 @@ struct SceneArgs {
   std::string export_ply;
   bool allow_missing = false;
   std::string model_path;
+  std::string category_map;
 };
 
 using Json = nlohmann::ordered_json;
@@ -50,6 +51,7 @@ Json SceneInfo(const world::Scene& scene) {
   info["num_furniture"] = scene.NumFurniture();
   info["num_triangles"] = scene.NumTriangles();
   info["missing_meshes"] = scene.missing_meshes();
+  info["unmapped_models"] = scene.unmapped_models();
   return info;
 }
 
@@ -78,6 +80,7 @@ int RunScene(const SceneArgs& args) {
   io::SceneLoadOptions options;
   options.allow_missing = args.allow_missing;
   options.model_path = args.model_path;
+  if (!args.category_map.empty()) options.category_map = args.category_map;
   const world::Scene scene = io::LoadScene(args.scene, options);
   if (!args.topview.empty()) io::RenderTopView(scene, io::TopViewOptions()).canvas.SavePng(args.topview);
   if (!args.export_ply.empty()) io::WritePly(args.export_ply, SceneMesh(scene));
@@ -92,6 +95,10 @@ int RunScene(const SceneArgs& args) {
     std::fprintf(stderr, "objscan scene: warning: %zu meshes could not be loaded (listed in --info)\n",
                  scene.missing_meshes().size());
   }
+  if (!scene.unmapped_models().empty()) {
+    std::fprintf(stderr, "objscan scene: warning: %zu models have no category in the category map (`other`, listed in --info)\n",
+                 scene.unmapped_models().size());
+  }
   return 0;
 }
 
@@ -101,7 +108,7 @@ void AddSceneCommand(CLI::App& root, RunFn* run) {
   auto args = std::make_shared<SceneArgs>();
   auto* cmd = root.add_subcommand("scene", "Load a scene, print its objects, draw a top view or export its mesh");
   cmd->add_option("--scene", args->scene,
-                  "scene SPEC: .world, .yaml/.json scene file, mesh, or procedural:CATEGORY:SEED")
+                  "scene SPEC: .world, .yaml/.json scene file, ScanNet scan folder or *_vh_clean_2.ply, mesh, or procedural:CATEGORY:SEED")
       ->required();
   cmd->add_flag("--info", args->info, "print objects and bounds as JSON on stdout");
   cmd->add_option("--topview", args->topview, "write a top view PNG (objects coloured by category, legend)");
@@ -112,6 +119,8 @@ void AddSceneCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--model-path", args->model_path,
                   "colon-separated folders searched for model:// URIs after the world's folder "
                   "(then $OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH)");
+  cmd->add_option("--category-map", args->category_map,
+                  "category map YAML (default: config/categories/default.yaml; see docs/real-inputs.md)");
   cmd->callback([run, args] { *run = [args] { return RunScene(*args); }; });
 }
 

@@ -173,6 +173,7 @@ std::string RunJson(const RunOutputInputs& in) {
                        {"fuse", r.timing_s.fuse},           {"segment", r.timing_s.segment},
                        {"recognize", r.timing_s.recognize}, {"nbo", r.timing_s.nbo},
                        {"nbv", r.timing_s.nbv},             {"navigate_sim", r.timing_s.navigate_sim}};
+  if (in.peak_rss_mb > 0.0) j["peak_rss_mb"] = std::round(in.peak_rss_mb * 10.0) / 10.0;
   return j.dump(2) + "\n";
 }
 
@@ -195,9 +196,11 @@ void WriteRunTopView(const std::string& path, const RunOutputInputs& in) {
   std::set<int> categories_present;
   const int dot = std::max(1, static_cast<int>(std::ceil(map.voxel_size_m() / mpp)));
   for (std::size_t e : order) {
+    const int cat = category_id[e];
+    // Seen from above the ceiling would hide the rooms under it (as in objscan scene --topview).
+    if (cat == world::CategoryId(world::Category::kCeiling)) continue;
     const Eigen::Vector2d p = to_px.ToPixel(map.position(e).cast<double>());
     io::Rgb color;
-    const int cat = category_id[e];
     if (cat == world::CategoryId(world::Category::kFloor)) {
       color = {235, 235, 235};
     } else if (cat == world::CategoryId(world::Category::kWall)) {

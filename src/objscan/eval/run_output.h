@@ -19,6 +19,8 @@ struct RunOutputInputs {
   const RunMetrics* metrics = nullptr;  // null when no ground truth
   std::string scene_spec;
   std::string database_path;
+  // Peak resident memory of the process (run.json `peak_rss_mb`); 0 = not measured.
+  double peak_rss_mb = 0.0;
 };
 
 // JSON text of run.json.

@@ -200,13 +200,21 @@ TEST(GazeboWorldTest, CategoriesFromSuncgMappingAndModelNames) {
   EXPECT_EQ(ByName(scene, "m1_0")->model_name, "m1");
 
   // A table naming a category objscan does not know is rejected with file and line.
+  // The 'thing' is in no map: `other`, and listed.
+  ASSERT_EQ(scene.unmapped_models().size(), 1u);
+  EXPECT_EQ(scene.unmapped_models()[0], "thing (thing)");
+
+  // A table naming a category objscan does not know is rejected with file and line; the table is
+  // named by a category map's suncg rule.
   WriteText(dir.File("bad_table.csv"), "suncg_class,category\narmchair,throne\n");
+  WriteText(dir.File("bad_map.yaml"), "rules:\n  - {suncg: bad_table.csv}\n");
   SceneLoadOptions options;
-  options.suncg_category_table = dir.File("bad_table.csv");
+  options.category_map = dir.File("bad_map.yaml");
   ExpectInputError([&] { LoadGazeboWorld(dir.File("house/room/room.world"), options); }, "bad_table.csv:2");
   // Without a '*' row an unmapped class is an error naming the model.
   WriteText(dir.File("small_table.csv"), "suncg_class,category\narmchair,chair\nlamp,lamp\n");
-  options.suncg_category_table = dir.File("small_table.csv");
+  WriteText(dir.File("small_map.yaml"), "rules:\n  - {suncg: small_table.csv}\n");
+  options.category_map = dir.File("small_map.yaml");
   ExpectInputError([&] { LoadGazeboWorld(dir.File("house/room/room.world"), options); }, "model 'm3_0'");
 }
 

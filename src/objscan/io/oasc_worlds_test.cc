@@ -226,3 +226,30 @@ TEST(OascWorldsTest, FootprintsMatchTheWorldsCollisionBoxes) {
 
 }  // namespace
 }  // namespace objscan::io
+
+namespace objscan::io {
+namespace {
+
+// The shipped SUNCG map alone gives every OASC object the category the default map gives (which is
+// the mapping of before category maps: the scene snapshots of all ten worlds were byte-identical), and
+// no OASC model is left unmapped.
+TEST(OascWorldsTest, SuncgMapAloneGivesTheSameCategories) {
+  OBJSCAN_REQUIRE_SHARED_DATA(data);
+  for (const WorldCase& w : kWorlds) {
+    SCOPED_TRACE(w.folder);
+    SceneLoadOptions options;
+    options.model_path = data + "/gazebo-models";
+    options.category_map = "categories/suncg.yaml";
+    const world::Scene suncg = LoadScene(WorldPath(data, w), options);
+    const world::Scene& by_default = Loaded(data, w);
+    ASSERT_EQ(suncg.objects().size(), by_default.objects().size());
+    for (std::size_t i = 0; i < suncg.objects().size(); ++i) {
+      EXPECT_EQ(suncg.objects()[i].name, by_default.objects()[i].name);
+      EXPECT_EQ(suncg.objects()[i].category, by_default.objects()[i].category) << suncg.objects()[i].name;
+    }
+    EXPECT_TRUE(by_default.unmapped_models().empty()) << by_default.unmapped_models().front();
+  }
+}
+
+}  // namespace
+}  // namespace objscan::io

@@ -5,8 +5,10 @@
 #include <filesystem>
 
 #include "objscan/common/error.h"
+#include "objscan/io/category_map.h"
 #include "objscan/io/gazebo_world.h"
 #include "objscan/io/mesh_io.h"
+#include "objscan/io/scannet.h"
 #include "objscan/io/scene_file.h"
 #include "objscan/world/procedural/procedural.h"
 
@@ -69,19 +71,28 @@ std::string LowerExtension(const std::string& path) {
 
 }  // namespace
 
+void SceneLoadOptions::Validate() const {
+  if (category_map.empty()) throw ConfigError("scene.category_map: must name a category map file");
+}
+
 world::Scene LoadScene(const std::string& spec, const SceneLoadOptions& options) {
   options.Validate();
   if (spec.rfind("procedural:", 0) == 0) return LoadProcedural(spec);
   const std::string ext = LowerExtension(spec);
   std::error_code ec;
   if (!fs::exists(spec, ec)) {
-    throw InputError(spec + ": no such file (a scene is a .world, .yaml/.json, mesh file or procedural:CATEGORY:SEED)");
+    throw InputError(spec + ": no such file (a scene is a .world, .yaml/.json, ScanNet scan, mesh file or procedural:CATEGORY:SEED)");
   }
   if (ext == ".world" || ext == ".sdf") return LoadGazeboWorld(spec, options);
   if (ext == ".yaml" || ext == ".yml" || ext == ".json") return LoadSceneFile(spec);
+  if (IsScanNetSpec(spec)) {
+    const CategoryMap categories = CategoryMap::Load(ResolveCategoryMapPath(options.category_map));
+    return LoadScanNetScan(spec, options, categories);
+  }
   if (IsMeshFile(spec)) return LoadMeshScene(spec);
   throw InputError(spec + ": unsupported scene format '" + ext +
-                   "' (expected .world, .yaml/.json, obj/ply/off/dae/stl/gltf/glb or procedural:CATEGORY:SEED)");
+                   "' (expected .world, .yaml/.json, a ScanNet scan folder or *_vh_clean_2.ply, "
+                   "obj/ply/off/dae/stl/gltf/glb or procedural:CATEGORY:SEED)");
 }
 
 }  // namespace objscan::io

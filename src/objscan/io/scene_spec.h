@@ -1,6 +1,7 @@
 #pragma once
-// Loads a scene from a SPEC: a Gazebo .world file, an objscan scene file (.yaml/.json), a mesh file
-// (obj, ply, off, dae, stl, gltf, glb: one object of category `other`), or procedural:CATEGORY:SEED.
+// Loads a scene from a SPEC: a Gazebo .world file, an objscan scene file (.yaml/.json), a ScanNet scan
+// (its folder or its *_vh_clean_2.ply; see scannet.h), a mesh file (obj, ply, off, dae, stl, gltf,
+// glb: one object of category `other`), or procedural:CATEGORY:SEED.
 #include <string>
 #include <vector>
 
@@ -15,16 +16,18 @@ struct SceneLoadOptions {
   std::string model_path;
   // Load what can be loaded and list the rest in Scene::missing_meshes() instead of failing.
   bool allow_missing = false;
-  // SUNCG class -> objscan category table (relative paths are resolved against the project's config/).
-  std::string suncg_category_table = "suncg_categories.csv";
+  // Category map of Gazebo worlds and ScanNet scans (category_map.h): a YAML file, as given when it
+  // exists, else relative to the project's config/. The default knows SUNCG/OASC, AWS RoboMaker and
+  // ScanNet/NYU40 names.
+  std::string category_map = "categories/default.yaml";
 
   template <class V>
   void Visit(V& v) {
     v("model_path", model_path);
     v("allow_missing", allow_missing);
-    v("suncg_category_table", suncg_category_table);
+    v("category_map", category_map);
   }
-  void Validate() const {}
+  void Validate() const;
 };
 
 // Throws InputError with one line naming the file and element on bad input.

@@ -74,7 +74,9 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
   // The map covers walls and furniture (the floor quad extends past the walls).
   geometry::Aabb3 extent;
   for (const auto& o : scene.objects()) {
-    if (o.category != world::Category::kFloor) extent.Extend(scene.ObjectBounds(o));
+    if (o.category != world::Category::kFloor && o.category != world::Category::kCeiling) {
+      extent.Extend(scene.ObjectBounds(o));
+    }
   }
   if (extent.Empty()) extent = scene.Bounds();
   if (extent.Empty()) extent.Extend(Eigen::Vector3d(-1, -1, 0)), extent.Extend(Eigen::Vector3d(1, 1, 0));
@@ -105,6 +107,8 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
   std::map<world::Category, int> present;
   for (std::size_t oi = 0; oi < scene.objects().size(); ++oi) {
     const world::SceneObject& o = scene.objects()[oi];
+    // Seen from above a ceiling would hide the rooms it covers.
+    if (o.category == world::Category::kCeiling) continue;
     ++present[o.category];
     const Rgb base = ToRgb(world::CategoryColor(o.category));
     const int layer = LayerOf(o.category);
@@ -113,6 +117,16 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
     for (std::size_t v = 0; v < o.mesh.vertices.size(); ++v) {
       world_vertices[v] = o.T_world_object * o.mesh.vertices[v].cast<double>();
       pixels[v] = fine.ToPixel(world_vertices[v]);
+    }
+    // Whether any triangle covers a pixel seen from above (panels and boxes do; a surface of
+    // vertical triangles does not).
+    bool has_footprint = false;
+    for (const auto& t : o.mesh.triangles) {
+      const Eigen::Vector2d ab = pixels[t[1]] - pixels[t[0]], ac = pixels[t[2]] - pixels[t[0]];
+      if (std::abs(ab.x() * ac.y() - ab.y() * ac.x()) >= 1.0) {
+        has_footprint = true;
+        break;
+      }
     }
     for (const auto& t : o.mesh.triangles) {
       const Eigen::Vector3d& A = world_vertices[t[0]];
@@ -133,6 +147,25 @@ TopView RenderTopView(const world::Scene& scene, const TopViewOptions& options) 
       };
       RasterTriangle(pixels[t[0]], pixels[t[1]], pixels[t[2]], static_cast<float>(A.z()), static_cast<float>(B.z()),
                      static_cast<float>(C.z()), layer * kLayerStride, static_cast<std::int32_t>(oi), shade_of, &raster);
+      if (layer == 1 && !has_footprint) {
+        // A wall of zero thickness (a scanned wall is a surface, not a panel) has no footprint: its
+        // vertical triangles leave their edges, which the thickening below widens.
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector2d& a = pixels[t[k]];
+          const Eigen::Vector2d& b = pixels[t[(k + 1) % 3]];
+          const int steps = static_cast<int>(std::ceil((b - a).norm())) + 1;
+          for (int i = 0; i <= steps; ++i) {
+            const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(i) / steps);
+            const int x = static_cast<int>(std::floor(p.x())), y = static_cast<int>(std::floor(p.y()));
+            if (x < 0 || y < 0 || x >= raster.width || y >= raster.height) continue;
+            const std::size_t j = static_cast<std::size_t>(y) * raster.width + x;
+            if (raster.owner[j] >= 0 && LayerOf(scene.objects()[raster.owner[j]].category) >= 1) continue;
+            raster.owner[j] = static_cast<std::int32_t>(oi);
+            raster.depth[j] = kLayerStride + static_cast<float>(std::max({A.z(), B.z(), C.z()}));
+            map_canvas.SetPixel(x, y, base);
+          }
+        }
+      }
     }
   }
 

@@ -84,5 +84,36 @@ TEST(TopViewTest, RejectsHugeImages) {
   EXPECT_THROW(RenderTopView(scene, options), ConfigError);
 }
 
+// A scanned wall is a surface of vertical triangles, without the thickness of a panel: drawn from
+// its edges, not left out; a ceiling is not drawn (it would hide the room).
+TEST(TopViewTest, ZeroThicknessWallsAreDrawnAndCeilingsAreNot) {
+  world::Scene scene("test");
+  world::SceneObject floor;
+  floor.category = world::Category::kFloor;
+  floor.mesh = geometry::MakeQuadXY(0, 0, 3, 3);
+  scene.Add(floor);
+  world::SceneObject wall;
+  wall.category = world::Category::kWall;
+  wall.mesh.vertices = {{0, 1.5f, 0}, {3, 1.5f, 0}, {3, 1.5f, 2.4f}, {0, 1.5f, 2.4f}};
+  wall.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  scene.Add(wall);
+  world::SceneObject ceiling;
+  ceiling.category = world::Category::kCeiling;
+  ceiling.mesh = geometry::MakeQuadXY(0, 0, 3, 3);
+  for (auto& v : ceiling.mesh.vertices) v.z() = 2.4f;
+  scene.Add(ceiling);
+  TopViewOptions options;
+  options.metres_per_pixel = 0.02;
+  const TopView view = RenderTopView(scene, options);
+  const auto at = [&](double x, double y) {
+    const Eigen::Vector2d p = view.map.ToPixel(x, y);
+    return view.canvas.Pixel(static_cast<int>(p.x()), static_cast<int>(p.y()));
+  };
+  EXPECT_EQ(at(1.5, 1.5), ColorOf(world::Category::kWall));
+  // The map spans the wall plus the margin (0.3 m); the floor either side is seen through the ceiling.
+  EXPECT_EQ(at(1.5, 1.3), ColorOf(world::Category::kFloor));
+  EXPECT_EQ(at(1.5, 1.7), ColorOf(world::Category::kFloor));
+}
+
 }  // namespace
 }  // namespace objscan::io

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <unordered_map>
 
@@ -24,6 +25,8 @@ void StructureOptions::Validate() const {
   config::RequireNonNegative("structure.wall_behind_min_depth_m", wall_behind_min_depth_m);
   config::RequireNonNegative("structure.furniture_top_margin_m", furniture_top_margin_m);
   config::RequireInRange("structure.wall_max_count", wall_max_count, 0, 1000);
+  config::RequirePositive("structure.ceiling_min_height_m", ceiling_min_height_m);
+  config::RequireNonNegative("structure.ceiling_min_area_m2", ceiling_min_area_m2);
 }
 
 bool StructureResult::InsideWalls(const Eigen::Vector3d& p, double margin_m) const {
@@ -140,6 +143,45 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
     result.has_floor = count > 0;
     result.floor_height_m = count > 0 ? sum / count : z_peak;
     result.floor_area_m2 = count * voxel_area;
+  }
+
+  // Ceiling: the lowest height (1 cm bins, summed over three) at which downward elements high above
+  // the floor cover ceiling_min_area_m2. A house's ceiling has several levels (lowered parts,
+  // bulkheads, beams): everything from the lowest level up that does not face up is ceiling (see
+  // TagElements).
+  {
+    const double z_min = (result.has_floor ? result.floor_height_m : 0.0) + options_.ceiling_min_height_m;
+    std::map<std::int64_t, double> ceiling_hist;  // ordered: the lowest level is found first
+    for (std::size_t i = 0; i < n; ++i) {
+      const double z = map->position(i).z();
+      if (-normals[i].z() < cos_floor || z < z_min) continue;
+      ceiling_hist[static_cast<std::int64_t>(std::floor(z / bin))] += 1.0;
+    }
+    const auto at = [&](std::int64_t k) {
+      const auto it = ceiling_hist.find(k);
+      return it == ceiling_hist.end() ? 0.0 : it->second;
+    };
+    for (const auto& [b, count] : ceiling_hist) {
+      if ((count + at(b - 1) + at(b + 1)) * voxel_area < options_.ceiling_min_area_m2) continue;
+      // The level: the fullest bin of this one and the next two.
+      std::int64_t level = b;
+      for (std::int64_t k = b + 1; k <= b + 2; ++k) {
+        if (at(k) > at(level)) level = k;
+      }
+      const double z_peak = (static_cast<double>(level) + 0.5) * bin;
+      double sum = 0.0;
+      std::size_t elements = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double z = map->position(i).z();
+        if (-normals[i].z() >= cos_floor && std::fabs(z - z_peak) < tol) {
+          sum += z;
+          ++elements;
+        }
+      }
+      result.has_ceiling = elements > 0;
+      result.ceiling_height_m = elements > 0 ? sum / elements : z_peak;
+      break;
+    }
   }
 
   // Walls: Hough votes over (azimuth of the horizontal normal, offset along it).
@@ -367,6 +409,7 @@ void StructureDetector::TagElements(SurfaceMap* map, StructureResult* result) co
   const double cos_tag = std::cos(kTagMaxAngleDeg * M_PI / 180.0);
   result->num_floor_elements = 0;
   result->num_wall_elements = 0;
+  result->num_ceiling_elements = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p = map->position(i).cast<double>();
     const Eigen::Vector3d nr = map->normal(i).cast<double>();
@@ -374,6 +417,9 @@ void StructureDetector::TagElements(SurfaceMap* map, StructureResult* result) co
     if (result->has_floor && nr.z() >= cos_floor && std::fabs(p.z() - result->floor_height_m) < tol) {
       s = Structure::kFloor;
       ++result->num_floor_elements;
+    } else if (result->has_ceiling && nr.z() < cos_floor && p.z() > result->ceiling_height_m - tol) {
+      s = Structure::kCeiling;
+      ++result->num_ceiling_elements;
     } else {
       for (const WallPlane& w : result->walls) {
         if (std::fabs(w.SignedDistance(p)) < tol && nr.dot(w.normal) > cos_tag) {

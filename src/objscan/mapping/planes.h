@@ -2,7 +2,10 @@
 // Floor and walls of the fused surface (paper §5.1, "Floor and wall"): the floor is the dominant
 // horizontal plane near z = 0, walls are large vertical planes that bound the observed surface
 // (almost nothing lies behind them). Their elements are tagged structural in the SurfaceMap and so
-// stay out of the components C.
+// stay out of the components C. Beyond the paper (whose rooms are open at the top), a ceiling is
+// structure too, not an object: its lowest level is the lowest height well above the floor where
+// downward-facing elements cover ceiling_min_area_m2; every element from that level up that does
+// not face up (upper ceiling levels, the sides of bulkheads and beams) is tagged ceiling.
 #include <Eigen/Core>
 #include <vector>
 
@@ -29,6 +32,12 @@ struct StructureOptions {
   // (and farther apart than 2 x plane_tolerance_m), one larger and as long, only that one is a wall.
   double wall_behind_min_depth_m = 0.12;
   int wall_max_count = 12;
+  // The ceiling is looked for this far above the floor and more, and needs this much area. Furniture
+  // tops face up; the large downward faces this high are ceilings and the building's beams and
+  // lintels at ceiling height (the AWS house without its ceiling has 1.8 m2 of them at 2.5 m):
+  // structure either way.
+  double ceiling_min_height_m = 2.0;
+  double ceiling_min_area_m2 = 1.0;
   // A plane in front of a parallel wall whose top this much lower than the wall's is furniture
   // against it (0 = only when the wall behind overlaps it along the wall).
   double furniture_top_margin_m = 0.2;
@@ -47,6 +56,8 @@ struct StructureOptions {
     v("wall_max_behind_fraction", wall_max_behind_fraction);
     v("wall_behind_min_depth_m", wall_behind_min_depth_m);
     v("wall_max_count", wall_max_count);
+    v("ceiling_min_height_m", ceiling_min_height_m);
+    v("ceiling_min_area_m2", ceiling_min_area_m2);
     v("furniture_top_margin_m", furniture_top_margin_m);
   }
   void Validate() const;
@@ -79,8 +90,11 @@ struct StructureResult {
   double floor_height_m = 0.0;
   double floor_area_m2 = 0.0;
   std::vector<WallPlane> walls;
+  bool has_ceiling = false;
+  double ceiling_height_m = 0.0;  // the lowest ceiling level
   std::size_t num_floor_elements = 0;
   std::size_t num_wall_elements = 0;
+  std::size_t num_ceiling_elements = 0;
 
   // True when p is on the room side of every wall whose span covers it (margin in metres).
   bool InsideWalls(const Eigen::Vector3d& p, double margin_m) const;

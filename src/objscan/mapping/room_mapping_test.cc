@@ -459,3 +459,37 @@ TEST(StructureTest, EachWallIsFoundOnceUnderFarRangeNoise) {
 
 }  // namespace
 }  // namespace objscan::mapping
+
+namespace objscan::mapping {
+namespace {
+
+// A ceiling (houses have them; the paper's rooms are open at the top) is structure: tagged ceiling,
+// not left to become an object; a lamp hanging under it faces down below the search height and
+// stays an object.
+TEST(StructureTest, CeilingIsStructureAndNoObject) {
+  constexpr std::int32_t kCeiling = 102, kLamp = 2;
+  AnalyticWorld room = EmptyRoom();
+  room.Add(Eigen::Vector3d(-2.1, -1.6, 2.4), Eigen::Vector3d(2.1, 1.6, 2.45), kCeiling);
+  room.Add(Eigen::Vector3d(-0.3, -0.3, 1.8), Eigen::Vector3d(0.3, 0.3, 1.95), kLamp);
+  Rng rng(5);
+  RoomScan scan;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-1.0, -0.5, 1.2), Eigen::Vector3d(0.5, 0.0, 1.2)}) {
+    for (int yaw = 0; yaw < 360; yaw += 60) {
+      Observe(room, View(p, yaw, 40), &rng, &scan);
+      Observe(room, View(p, yaw + 30, -30), &rng, &scan);
+    }
+  }
+  const StructureResult structure = StructureDetector().Update(&scan.surface);
+  ASSERT_TRUE(structure.has_ceiling);
+  EXPECT_NEAR(structure.ceiling_height_m, 2.4, 0.01);
+  EXPECT_GT(structure.num_ceiling_elements, 1000u);
+  EXPECT_GT(StructuralShare(scan.surface, kCeiling, 1000), 0.95);
+  EXPECT_LT(StructuralShare(scan.surface, kLamp, 200), 0.05);
+  // Without a ceiling nothing is tagged ceiling.
+  RoomScan open;
+  for (int yaw = 0; yaw < 360; yaw += 60) Observe(EmptyRoom(), View(Eigen::Vector3d(0, 0, 1.2), yaw, 40), &rng, &open);
+  EXPECT_FALSE(StructureDetector().Update(&open.surface).has_ceiling);
+}
+
+}  // namespace
+}  // namespace objscan::mapping

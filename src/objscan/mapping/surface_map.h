@@ -51,7 +51,7 @@ struct SurfaceMapOptions {
 };
 
 // Structural tag of an element (set by StructureDetector; kept out of the components C).
-enum class Structure : std::uint8_t { kNone = 0, kFloor = 1, kWall = 2 };
+enum class Structure : std::uint8_t { kNone = 0, kFloor = 1, kWall = 2, kCeiling = 3 };
 
 // What Integrate() did with each pixel of a frame: the element it was fused into (-1 when the
 // pixel was not fused), and the frame's vertex/normal map, for the segmenter.

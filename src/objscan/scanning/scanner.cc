@@ -1125,6 +1125,10 @@ void Scanner::ElementObjects(std::vector<int>* object_id, std::vector<int>* cate
       (*category_id)[e] = world::CategoryId(world::Category::kWall);
       continue;
     }
+    if (st == mapping::Structure::kCeiling) {
+      (*category_id)[e] = world::CategoryId(world::Category::kCeiling);
+      continue;
+    }
     auto it = object_of_label.find(s.surface.label(e));
     if (it == object_of_label.end()) continue;
     (*object_id)[e] = it->second->id;

@@ -5,14 +5,14 @@ namespace {
 constexpr const char* kNames[kNumCategories] = {
     "bathtub", "bed",     "cabinet", "can",   "chair",  "curtain", "desk",    "door",
     "dresser", "lamp",    "monitor", "night_stand", "radio", "refrigerator", "shelves", "sink",
-    "sofa",    "table",   "toilet",  "tv_stand", "window", "other", "floor",   "wall"};
+    "sofa",    "table",   "toilet",  "tv_stand", "window", "other", "floor",   "wall",  "ceiling"};
 
 // A qualitative palette with enough distinct hues for 22 categories.
 constexpr unsigned char kColors[kNumCategories][3] = {
     {31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},   {148, 103, 189}, {140, 86, 75},
     {227, 119, 194}, {188, 189, 34}, {23, 190, 207},  {255, 215, 0},   {0, 0, 128},     {128, 0, 0},
     {0, 128, 128},   {170, 110, 40}, {128, 128, 0},   {0, 130, 200},   {245, 130, 48},  {145, 30, 180},
-    {70, 240, 240},  {240, 50, 230}, {210, 245, 60},  {128, 150, 175}, {225, 225, 225}, {60, 60, 60}};
+    {70, 240, 240},  {240, 50, 230}, {210, 245, 60},  {128, 150, 175}, {225, 225, 225}, {60, 60, 60},   {200, 190, 170}};
 }  // namespace
 
 const char* CategoryName(Category c) {

@@ -1,5 +1,5 @@
 #pragma once
-// The scene model: furniture objects and structure (floor, walls), each a triangle mesh in its own
+// The scene model: furniture objects and structure (floor, walls, ceiling), each a triangle mesh in its own
 // frame (metres, Z up) with a pose in the world. Plain data plus queries; loaders live in io/ and
 // world/procedural/.
 #include <cstdint>
@@ -69,11 +69,15 @@ class Scene {
   // Meshes the loader could not resolve (kept so a scene loaded with --allow-missing can list them).
   std::vector<std::string>& missing_meshes() { return missing_meshes_; }
   const std::vector<std::string>& missing_meshes() const { return missing_meshes_; }
+  // Models no category map rule matched (category `other`), as "name (source)".
+  std::vector<std::string>& unmapped_models() { return unmapped_models_; }
+  const std::vector<std::string>& unmapped_models() const { return unmapped_models_; }
 
  private:
   std::string name_;
   std::vector<SceneObject> objects_;
   std::vector<std::string> missing_meshes_;
+  std::vector<std::string> unmapped_models_;
 };
 
 }  // namespace objscan::world
