@@ -129,17 +129,17 @@ Suite ResolveSuite(const std::string& name_or_dir, const SuiteOptions& options) 
 
 std::vector<BenchMethod> AllBenchMethods() {
   return {
-      {"ours", "objscan's default: the paper's method with objscan's additions (config/default.yaml)", {}, false},
+      {"ours", "objscan's default: the paper's method with objscan's additions (config/default.yaml)", {}, false, ""},
       {"paper", "the paper's method as published (config/paper.yaml)", {}, false, "paper.yaml"},
-      {"no-objectness", "NBO without the objectness term", {"nbo.objectness_weight=0"}, false},
-      {"no-size", "NBO without the size term", {"nbo.size_weight=0"}, false},
-      {"no-distance", "NBO without the distance term", {"nbo.distance_weight=0"}, false},
-      {"no-orientation", "NBO without the orientation term", {"nbo.orientation_weight=0"}, false},
+      {"no-objectness", "NBO without the objectness term", {"nbo.objectness_weight=0"}, false, ""},
+      {"no-size", "NBO without the size term", {"nbo.size_weight=0"}, false, ""},
+      {"no-distance", "NBO without the distance term", {"nbo.distance_weight=0"}, false, ""},
+      {"no-orientation", "NBO without the orientation term", {"nbo.orientation_weight=0"}, false, ""},
       {"frontier", "frontier exploration without object guidance (same step budget)", {"scanner.guidance=frontier"},
-       false},
+       false, ""},
       {"preseg-only", "recognition on pre-segmented components, no graph cuts (Tateno)",
-       {"postsegmentation.graph_cuts=false"}, false},
-      {"db-no-parts", "database without component and pair entries (Fig. 14)", {}, true},
+       {"postsegmentation.graph_cuts=false"}, false, ""},
+      {"db-no-parts", "database without component and pair entries (Fig. 14)", {}, true, ""},
   };
 }
 
