@@ -483,8 +483,8 @@ TEST(StructureTest, CeilingIsStructureAndNoObject) {
   ASSERT_TRUE(structure.has_ceiling);
   EXPECT_NEAR(structure.ceiling_height_m, 2.4, 0.01);
   EXPECT_GT(structure.num_ceiling_elements, 1000u);
-  EXPECT_GT(StructuralShare(scan.surface, kCeiling, 1000), 0.95);
-  EXPECT_LT(StructuralShare(scan.surface, kLamp, 200), 0.05);
+  EXPECT_GT(StructuralShare(scan.surface, scan.votes, kCeiling, 1000), 0.95);
+  EXPECT_LT(StructuralShare(scan.surface, scan.votes, kLamp, 200), 0.05);
   // Without a ceiling nothing is tagged ceiling.
   RoomScan open;
   for (int yaw = 0; yaw < 360; yaw += 60) Observe(EmptyRoom(), View(Eigen::Vector3d(0, 0, 1.2), yaw, 40), &rng, &open);
