@@ -16,12 +16,7 @@
 namespace objscan::io {
 namespace {
 
-const world::SceneObject* ByName(const world::Scene& scene, const std::string& name) {
-  for (const auto& o : scene.objects()) {
-    if (o.name == name) return &o;
-  }
-  return nullptr;
-}
+using testing::ByName;
 
 world::Scene LoadHouse(const std::string& data) {
   SceneLoadOptions options;

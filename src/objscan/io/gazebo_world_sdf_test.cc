@@ -15,6 +15,8 @@ namespace {
 
 using testing::ExpectInputError;
 using testing::TempDir;
+using testing::ByName;
+using testing::ExpectBox;
 using testing::WriteText;
 
 constexpr double kHalfPi = 1.5707963267948966;
@@ -62,18 +64,6 @@ void WriteAwsStyleModel(const std::string& models_dir, const std::string& name, 
                 "</collision><visual name='visual'><geometry><mesh><uri>model://" + name + "/meshes/" + name +
                 "_visual.DAE</uri></mesh></geometry></visual></link><static>1</static></model></sdf>\n");
   WriteText(models_dir + "/" + name + "/meshes/" + name + "_visual.DAE", ColladaCube());
-}
-
-const world::SceneObject* ByName(const world::Scene& scene, const std::string& name) {
-  for (const auto& o : scene.objects()) {
-    if (o.name == name) return &o;
-  }
-  return nullptr;
-}
-
-void ExpectBox(const geometry::Aabb3& b, const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m, double tol = 1e-4) {
-  EXPECT_LT((b.min_m - min_m).norm(), tol) << "min " << b.min_m.transpose() << " expected " << min_m.transpose();
-  EXPECT_LT((b.max_m - max_m).norm(), tol) << "max " << b.max_m.transpose() << " expected " << max_m.transpose();
 }
 
 // The world's bounds of model `name` (which must exist).

@@ -14,6 +14,8 @@ namespace {
 
 using testing::ExpectInputError;
 using testing::TempDir;
+using testing::ByName;
+using testing::ExpectBox;
 using testing::WriteText;
 
 // A unit cube [0,1]^3 as OBJ, scaled by `size` (so a folder's copy can be told apart).
@@ -40,18 +42,6 @@ std::string World(const std::string& body) {
          "<model name='ground_plane'><static>1</static><link name='link'><visual name='visual'><geometry>"
          "<plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></visual></link></model>\n" +
          body + "</world></sdf>\n";
-}
-
-const world::SceneObject* ByName(const world::Scene& scene, const std::string& name) {
-  for (const auto& o : scene.objects()) {
-    if (o.name == name) return &o;
-  }
-  return nullptr;
-}
-
-void ExpectBox(const geometry::Aabb3& b, const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m, double tol = 1e-4) {
-  EXPECT_LT((b.min_m - min_m).norm(), tol) << "min " << b.min_m.transpose() << " expected " << min_m.transpose();
-  EXPECT_LT((b.max_m - max_m).norm(), tol) << "max " << b.max_m.transpose() << " expected " << max_m.transpose();
 }
 
 TEST(GazeboWorldTest, ComposesModelLinkAndVisualPosesForPrimitives) {

@@ -18,6 +18,7 @@ using objscan::testing::ScanNetFixtureOptions;
 using objscan::testing::WriteScanNetFixture;
 using testing::ExpectInputError;
 using testing::TempDir;
+using testing::ByName;
 using testing::WriteText;
 using world::Category;
 
@@ -27,13 +28,6 @@ std::vector<const world::SceneObject*> OfCategory(const world::Scene& scene, Cat
     if (o.category == c) out.push_back(&o);
   }
   return out;
-}
-
-const world::SceneObject* ByName(const world::Scene& scene, const std::string& name) {
-  for (const auto& o : scene.objects()) {
-    if (o.name == name) return &o;
-  }
-  return nullptr;
 }
 
 // Compares world bounds with a fixture box; `xy` false when the scan was not given its alignment

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "objscan/common/error.h"
+#include "objscan/geometry/aabb.h"
+#include "objscan/world/scene.h"
 
 namespace objscan::io::testing {
 
@@ -50,6 +52,21 @@ void ExpectInputError(Fn&& fn, const std::string& needle) {
     EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "message: " << e.what();
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "message is not one line: " << e.what();
   }
+}
+
+// The scene object of this name, or null.
+inline const world::SceneObject* ByName(const world::Scene& scene, const std::string& name) {
+  for (const auto& o : scene.objects()) {
+    if (o.name == name) return &o;
+  }
+  return nullptr;
+}
+
+// Expects the box's corners within `tol` of the given ones.
+inline void ExpectBox(const geometry::Aabb3& b, const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m,
+                      double tol = 1e-4) {
+  EXPECT_LT((b.min_m - min_m).norm(), tol) << "min " << b.min_m.transpose() << " expected " << min_m.transpose();
+  EXPECT_LT((b.max_m - max_m).norm(), tol) << "max " << b.max_m.transpose() << " expected " << max_m.transpose();
 }
 
 }  // namespace objscan::io::testing
