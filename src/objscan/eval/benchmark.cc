@@ -360,7 +360,7 @@ std::vector<recognition::ModelSource> ModelDisjointSources(const std::vector<Wor
     if (w == test_index) continue;
     const fs::path world_dir = fs::path(worlds[w].world_path).parent_path();
     for (const auto& o : worlds[w].scene.objects()) {
-      if (o.IsStructural() || o.category == world::Category::kOther || o.model_name.empty()) continue;
+      if (o.IsStructural() || o.model_name.empty()) continue;
       if (excluded.count(o.model_name) || !added.insert(o.model_name).second) continue;
       if (o.mesh.triangles.empty()) continue;
       recognition::ModelSource s;

@@ -316,7 +316,7 @@ TEST(WorldDatabaseTest, ModelDisjointSources) {
   worlds[1].world_path = "/w/b/room.world";
   worlds[1].scene.Add(Object("100", Category::kChair));  // in the test world: left out
   worlds[1].scene.Add(Object("300", Category::kBed));
-  worlds[1].scene.Add(Object("400", Category::kOther));  // category other: left out
+  worlds[1].scene.Add(Object("400", Category::kOther));  // category other: kept
   worlds[1].scene.Add(Object("wall", Category::kWall));  // structural: left out
   worlds[2].world_path = "/w/c/room.world";
   worlds[2].scene.Add(Object("300", Category::kBed));  // once only
@@ -324,10 +324,11 @@ TEST(WorldDatabaseTest, ModelDisjointSources) {
   const auto sources = ModelDisjointSources(worlds, 0);
   std::vector<std::string> names;
   for (const auto& s : sources) names.push_back(s.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"bed/300", "sofa/500"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"bed/300", "other/400", "sofa/500"}));
   EXPECT_EQ(sources[0].category, Category::kBed);
+  EXPECT_EQ(sources[1].category, Category::kOther);
   EXPECT_EQ(sources[0].load_mesh().triangles.size(), 12u);
-  // Test world 1 excludes 100, 300 (and 400): the rest of worlds 0 and 2.
+  // Test world 1 excludes 100, 300 and 400: the rest of worlds 0 and 2.
   names.clear();
   for (const auto& s : ModelDisjointSources(worlds, 1)) names.push_back(s.name);
   EXPECT_EQ(names, (std::vector<std::string>{"sofa/500", "table/200"}));

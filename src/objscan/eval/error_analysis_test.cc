@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "objscan/common/error.h"
 
 namespace objscan::eval {
@@ -113,17 +115,19 @@ TEST(ErrorAnalysisTest, ConfusionMatrixCountsCellByCell) {
   EXPECT_EQ(twice.Count(bg, "table"), 4);
 }
 
-TEST(ErrorAnalysisTest, OtherObjectsTheDatabaseKnowsCanBeCorrect) {
-  // With `other` in the database, an `other` reported on a plant is a true positive and a second
-  // piece on it a duplicate; a chair on a second plant stays an `other` object error.
+TEST(ErrorAnalysisTest, OtherObjectsAreNeverGroundTruthEvenWhenTheDatabaseHasThem) {
+  // With `other` models in the database, objects recognised as `other` are no outputs (the caller
+  // leaves them out) and plants are in no ground-truth set: a chair on a plant stays an `other`
+  // object error, and the plants are not missed objects of the recall.
   const std::vector<GroundTruthInstance> truth = {{4, Category::kOther, true}, {5, Category::kOther, true}};
-  const std::vector<OutputObject> outputs = {{Category::kOther, 4}, {Category::kChair, 4}, {Category::kChair, 5}};
+  const std::vector<OutputObject> outputs = {{Category::kChair, 5}};
   const ErrorAnalysis a = AnalyseErrors(truth, outputs, {Category::kChair, Category::kOther});
-  EXPECT_EQ(a.output_outcomes, (std::vector<OutputOutcome>{OutputOutcome::kCorrect, OutputOutcome::kDuplicatePiece,
-                                                           OutputOutcome::kOtherObject}));
-  EXPECT_EQ(a.confusion.Count("other", "other"), 1);
-  EXPECT_EQ(a.confusion.Count("other", "chair"), 2);
-  EXPECT_EQ(a.confusion.ColumnTotal(ConfusionMatrix::kMissedColumn), 0);
+  EXPECT_EQ(a.output_outcomes, (std::vector<OutputOutcome>{OutputOutcome::kOtherObject}));
+  EXPECT_EQ(a.recognition.all.ground_truth, 0);
+  EXPECT_EQ(a.confusion.Count("other", "chair"), 1);
+  EXPECT_EQ(a.confusion.Count("other", ConfusionMatrix::kMissedColumn), 1);
+  EXPECT_THROW(AnalyseErrors(truth, {{Category::kOther, 4}}, {Category::kChair, Category::kOther}),
+               std::invalid_argument);
 }
 
 TEST(ErrorAnalysisTest, NothingReportedMissesEveryObjectAndDuplicateIdsThrow) {

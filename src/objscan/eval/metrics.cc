@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -31,6 +32,10 @@ int MajorityInstance(const std::vector<int>& point_instances) {
   return best;
 }
 
+bool IsScoredCategory(world::Category category) {
+  return !world::IsStructural(category) && category != world::Category::kOther;
+}
+
 RecognitionResult MatchRecognitions(const std::vector<GroundTruthInstance>& ground_truth,
                                     const std::vector<OutputObject>& outputs,
                                     const std::vector<world::Category>& database_categories) {
@@ -45,7 +50,7 @@ RecognitionResult MatchRecognitions(const std::vector<GroundTruthInstance>& grou
     }
   }
   auto in_set = [&](const GroundTruthInstance& g) {
-    return !world::IsStructural(g.category) && known[static_cast<std::size_t>(world::CategoryId(g.category))];
+    return IsScoredCategory(g.category) && known[static_cast<std::size_t>(world::CategoryId(g.category))];
   };
   for (const GroundTruthInstance& g : ground_truth) {
     if (!in_set(g)) continue;
@@ -58,6 +63,10 @@ RecognitionResult MatchRecognitions(const std::vector<GroundTruthInstance>& grou
   result.output_is_true_positive.assign(outputs.size(), false);
   for (std::size_t o = 0; o < outputs.size(); ++o) {
     const OutputObject& out = outputs[o];
+    if (!IsScoredCategory(out.category)) {
+      throw std::invalid_argument(std::string("MatchRecognitions: an output of category ") +
+                                  world::CategoryName(out.category) + " (not a scored category)");
+    }
     ++result.all.outputs;
     ++result.per_category[static_cast<std::size_t>(world::CategoryId(out.category))].outputs;
     auto it = instance_by_id.find(out.majority_instance);

@@ -57,10 +57,17 @@ struct RecognitionResult {
   std::vector<int> matched_instances;         // ground-truth instance ids matched, ascending
 };
 
+// Whether the recognition metrics score objects of this category: not structure, and not `other`.
+// An object recognised as `other` (a plant, a towel, a box: a database model of no benchmark category)
+// is the honest answer "none of the categories", so it is no output, and ground-truth objects of
+// category `other` are in no ground-truth set, whatever the database holds.
+bool IsScoredCategory(world::Category category);
+
 // Matches outputs to ground truth in the given order: an output is a true positive when its category
-// equals that of its majority instance, that instance is in the ground-truth set (every non-structural
-// instance whose category `database_categories` holds) and no earlier output matched it (a duplicate
-// detection is a false positive). Throws InputError on duplicate instance ids.
+// equals that of its majority instance, that instance is in the ground-truth set (every instance of a
+// scored category that `database_categories` holds) and no earlier output matched it (a duplicate
+// detection is a false positive). Outputs must be of scored categories (std::invalid_argument
+// otherwise). Throws InputError on duplicate instance ids.
 RecognitionResult MatchRecognitions(const std::vector<GroundTruthInstance>& ground_truth,
                                     const std::vector<OutputObject>& outputs,
                                     const std::vector<world::Category>& database_categories);

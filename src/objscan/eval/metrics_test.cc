@@ -94,7 +94,7 @@ TEST(RecognitionTest, RecallPrecisionWithDuplicateDetection) {
       {Category::kTable, 2},    // wrong category: FP
       {Category::kLamp, world::kNoInstance},  // background: FP
       {Category::kTable, 6},    // TP
-      {Category::kOther, 5},    // instance outside the set: FP
+      {Category::kLamp, 5},     // instance outside the set: FP
   };
   const RecognitionResult r = MatchRecognitions(gt, outputs, database);
   EXPECT_EQ(r.all.ground_truth, 4);  // 1, 2, 3, 6
@@ -105,7 +105,7 @@ TEST(RecognitionTest, RecallPrecisionWithDuplicateDetection) {
   EXPECT_EQ(r.output_is_true_positive, (std::vector<bool>{true, false, true, false, false, true, false}));
   EXPECT_EQ(r.matched_instances, (std::vector<int>{1, 3, 6}));
   // Floor: ground truth 1, 2, 6; outputs whose majority instance stands on the floor: the two chair
-  // outputs on 1, the table on 2, the table on 6, the "other" on 5.
+  // outputs on 1, the table on 2, the table on 6, the lamp on 5.
   EXPECT_EQ(r.floor.ground_truth, 3);
   EXPECT_EQ(r.floor.outputs, 5);
   EXPECT_EQ(r.floor.true_positives, 2);
@@ -121,8 +121,23 @@ TEST(RecognitionTest, RecallPrecisionWithDuplicateDetection) {
   EXPECT_EQ(table.true_positives, 1);
   const auto& lamp = r.per_category[static_cast<std::size_t>(world::CategoryId(Category::kLamp))];
   EXPECT_EQ(lamp.ground_truth, 0);
-  EXPECT_EQ(lamp.outputs, 1);
+  EXPECT_EQ(lamp.outputs, 2);
   EXPECT_EQ(r.per_category[static_cast<std::size_t>(world::CategoryId(Category::kWall))].ground_truth, 0);
+}
+
+// `other` is never scored: its objects are in no ground-truth set even when the database holds
+// `other` models, and an output of category `other` is refused (callers leave such objects out).
+TEST(RecognitionTest, OtherIsNeitherGroundTruthNorOutput) {
+  EXPECT_FALSE(IsScoredCategory(Category::kOther));
+  EXPECT_FALSE(IsScoredCategory(Category::kWall));
+  EXPECT_FALSE(IsScoredCategory(Category::kCeiling));
+  EXPECT_TRUE(IsScoredCategory(Category::kChair));
+  const std::vector<GroundTruthInstance> gt = {{1, Category::kChair, true}, {2, Category::kOther, true}};
+  const std::vector<Category> database = {Category::kChair, Category::kOther};
+  const RecognitionResult r = MatchRecognitions(gt, {{Category::kChair, 1}}, database);
+  EXPECT_EQ(r.all.ground_truth, 1);
+  EXPECT_EQ(r.all.true_positives, 1);
+  EXPECT_THROW(MatchRecognitions(gt, {{Category::kOther, 2}}, database), std::invalid_argument);
 }
 
 TEST(RecognitionTest, OrderDecidesWhichDuplicateCounts) {

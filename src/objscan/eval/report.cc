@@ -105,6 +105,7 @@ void AnalyseRunErrors(const Json& j, const std::string& source, RunSummary* r) {
       if (!complete && Num(o, "objectness") < min_objectness) continue;
       OutputObject out;
       out.category = CategoryNamed(o["category"].get<std::string>(), source);
+      if (!IsScoredCategory(out.category)) continue;  // recognised as `other`: no output
       out.majority_instance = o.contains("gt_instance") && o["gt_instance"].is_number() ? o["gt_instance"].get<int>()
                                                                                        : world::kNoInstance;
       outputs.push_back(out);

@@ -305,10 +305,11 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   RunMetrics out;
   const std::vector<GroundTruthInstance>& truth = m.truth;
   const std::vector<std::int32_t>& structural = m.structural;
-  // Output objects: complete ones, and incomplete ones recognised with enough objectness.
+  // Output objects: complete ones, and incomplete ones recognised with enough objectness, of a scored
+  // category (recognised as `other` is no output).
   std::vector<OutputObject> outputs;
   for (const auto& o : record.objects) {
-    if (!o.category) continue;
+    if (!o.category || !IsScoredCategory(*o.category)) continue;
     if (!o.complete && o.objectness < m.config.eval.recognized_min_objectness) continue;
     outputs.push_back({*o.category, o.gt_instance > 0 ? o.gt_instance : world::kNoInstance});
   }

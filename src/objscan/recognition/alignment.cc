@@ -104,8 +104,10 @@ struct Hypothesis {
 
 class Icp {
  public:
-  Icp(const std::vector<Eigen::Vector3f>& query, const AlignmentTarget& target, const AlignmentOptions& options)
-      : query_(query), target_(target), options_(options) {
+  // hold_height: ICP never changes the translation's z (AlignmentConstraints::floor_height_m).
+  Icp(const std::vector<Eigen::Vector3f>& query, const AlignmentTarget& target, const AlignmentOptions& options,
+      bool hold_height = false)
+      : query_(query), target_(target), options_(options), hold_height_(hold_height) {
     moved_.resize(query.size());
     nearest_.resize(query.size());
     hint_.assign(query.size(), -1);
@@ -300,7 +302,10 @@ class Icp {
       }
       ds = std::clamp(sab / saa, options_.min_scale / x->scale, options_.max_scale / x->scale);
     }
-    const Eigen::Vector3d dt = b_mean - ds * dR * a_mean;
+    Eigen::Vector3d dt = b_mean - ds * dR * a_mean;
+    // Held on the floor at height h: t.z = -scale * h. The update keeps that with dt.z = 0 for any ds
+    // (new t.z = ds * t.z = -(scale * ds) * h; rotations about Z leave z alone).
+    if (hold_height_) dt.z() = 0.0;
     // Motion of the kept points' spread: |ds*dR*a + dt - a| averaged, approximated at the mean and
     // by the rotation/scale change over the spread.
     const double spread = std::sqrt(saa / static_cast<double>(kept_));
@@ -315,6 +320,7 @@ class Icp {
   const std::vector<Eigen::Vector3f>& query_;
   const AlignmentTarget& target_;
   const AlignmentOptions& options_;
+  const bool hold_height_;
   std::vector<Eigen::Vector3f> moved_;
   std::vector<int> nearest_;
   std::vector<int> hint_;  // per query point: its last nearest item point, -1 before the first
@@ -374,14 +380,15 @@ Eigen::Affine3d AlignmentHypothesis::T_item_query() const {
 }
 
 std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>& query_points,
-                                             const AlignmentTarget& target, const AlignmentOptions& options) {
+                                             const AlignmentTarget& target, const AlignmentOptions& options,
+                                             const AlignmentConstraints& constraints) {
   std::vector<AlignmentHypothesis> out;
   if (query_points.empty() || target.empty()) return out;
   const int n = static_cast<int>(query_points.size());
   const std::vector<int> initial = StridedSubset(n, options.initial_points);
   const std::vector<int> coarse = StridedSubset(n, options.coarse_points);
 
-  Icp icp(query_points, target, options);
+  Icp icp(query_points, target, options, constraints.floor_height_m.has_value());
   const float truncation_d2 = options.initial_truncation_m > 0.0
                                   ? static_cast<float>(options.initial_truncation_m * options.initial_truncation_m)
                                   : std::numeric_limits<float>::infinity();
@@ -406,7 +413,7 @@ std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>&
     for (const auto& p : hull) qb.Extend(R * Eigen::Vector3d(p.x(), p.y(), z_lo));
     qb.Extend(Eigen::Vector3d(qb.min_m.x(), qb.min_m.y(), z_hi));
     // Translation candidates: footprint centres together, and (for partial views) each footprint side
-    // flush with the item's; bottoms together in z.
+    // flush with the item's; bottoms together in z, or the item's z = 0 on the floor the query stands on.
     std::vector<Eigen::Vector2d> xy;
     xy.emplace_back(tb.Center().head<2>() - qb.Center().head<2>());
     if (options.side_translation_inits) {
@@ -419,7 +426,8 @@ std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>&
     for (const auto& t_xy : xy) {
       Hypothesis h;
       h.x = x;
-      h.x.t = Eigen::Vector3d(t_xy.x(), t_xy.y(), tb.min_m.z() - qb.min_m.z());
+      const double t_z = constraints.floor_height_m ? -*constraints.floor_height_m : tb.min_m.z() - qb.min_m.z();
+      h.x.t = Eigen::Vector3d(t_xy.x(), t_xy.y(), t_z);
       h.cost = use_grid ? icp.GridCost(initial, h.x, truncation_d2) : icp.TruncatedCost(initial, h.x, truncation_d2);
       hypotheses.push_back(h);
     }
@@ -442,12 +450,13 @@ std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>&
 }
 
 AlignmentResult RefineAlignment(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
-                                const std::vector<AlignmentHypothesis>& hypotheses, const AlignmentOptions& options) {
+                                const std::vector<AlignmentHypothesis>& hypotheses, const AlignmentOptions& options,
+                                const AlignmentConstraints& constraints) {
   AlignmentResult result;
   if (query_points.empty() || target.empty() || hypotheses.empty()) return result;
   const int n = static_cast<int>(query_points.size());
   const std::vector<int> refine = StridedSubset(n, options.refine_points);
-  Icp icp(query_points, target, options);
+  Icp icp(query_points, target, options, constraints.floor_height_m.has_value());
   Hypothesis best;
   for (const AlignmentHypothesis& a : hypotheses) {
     Hypothesis h;
@@ -470,8 +479,9 @@ AlignmentResult RefineAlignment(const std::vector<Eigen::Vector3f>& query_points
 }
 
 AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
-                            const AlignmentOptions& options) {
-  return RefineAlignment(query_points, target, CoarseAlign(query_points, target, options), options);
+                            const AlignmentOptions& options, const AlignmentConstraints& constraints) {
+  return RefineAlignment(query_points, target, CoarseAlign(query_points, target, options, constraints), options,
+                         constraints);
 }
 
 }  // namespace objscan::recognition

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "objscan/common/config.h"
@@ -138,20 +139,32 @@ struct AlignmentHypothesis {
   Eigen::Affine3d T_item_query() const;
 };
 
+// What is known of the query's pose besides its points.
+struct AlignmentConstraints {
+  // The query stands on a floor at this height (query frame): the item's z = 0, where a database
+  // model stands, is held there, so the search and ICP turn and move the item across the floor but
+  // never lift it (a chair raised to fit a table top, a cabinet floating on a counter). Unset: the
+  // item's bottom starts at the query's bottom and ICP moves it freely in z.
+  std::optional<double> floor_height_m;
+};
+
 // The whole alignment: CoarseAlign, then RefineAlignment of its hypotheses.
 AlignmentResult AlignToItem(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
-                            const AlignmentOptions& options);
+                            const AlignmentOptions& options, const AlignmentConstraints& constraints = {});
 
 // The coarse stage alone (yaw x translation search on initial_points, coarse ICP on coarse_points):
 // the refine_hypotheses best hypotheses, best first; empty when the query or the item is empty. Cheap
 // enough to run on a whole shortlist and refine only the promising entries.
 std::vector<AlignmentHypothesis> CoarseAlign(const std::vector<Eigen::Vector3f>& query_points,
-                                             const AlignmentTarget& target, const AlignmentOptions& options);
+                                             const AlignmentTarget& target, const AlignmentOptions& options,
+                                             const AlignmentConstraints& constraints = {});
 
 // Refines hypotheses (e.g. from CoarseAlign) with refine_points query points and keeps the best;
 // trimmed_rms_m and inlier_fraction are measured over all query points.
+// With constraints.floor_height_m, the hypotheses must hold it already (as CoarseAlign's do).
 AlignmentResult RefineAlignment(const std::vector<Eigen::Vector3f>& query_points, const AlignmentTarget& target,
-                                const std::vector<AlignmentHypothesis>& hypotheses, const AlignmentOptions& options);
+                                const std::vector<AlignmentHypothesis>& hypotheses, const AlignmentOptions& options,
+                                const AlignmentConstraints& constraints = {});
 
 // Evenly strided indices of `count` of n points (all when count <= 0 or count >= n).
 std::vector<int> StridedSubset(int n, int count);

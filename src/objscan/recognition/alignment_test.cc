@@ -198,6 +198,52 @@ TEST(AlignmentTest, StridedSubsetSpreadsOverAllPoints) {
   EXPECT_EQ(s, (std::vector<int>{0, 2, 5, 7}));
 }
 
+// Held on a floor, the item's z = 0 stays exactly at the floor's height while yaw and offset are
+// recovered, also for a query whose lower part (the legs) was not seen.
+TEST(AlignmentTest, HeldOnTheFloorTheItemStandsOnIt) {
+  std::vector<Eigen::Vector3f> chair, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  const AlignmentTarget target(chair);
+  const double floor_m = 0.3, yaw = geometry::DegToRad(61.0);
+  const Eigen::Vector3d offset(-0.8, 1.4, floor_m);
+  std::vector<Eigen::Vector3f> seat_and_back;
+  for (const auto& p : Moved(ResampledChairKeypoints(), YawOffset(yaw, offset))) {
+    if (p.z() > floor_m + 0.35) seat_and_back.push_back(p);
+  }
+  AlignmentConstraints on_floor;
+  on_floor.floor_height_m = floor_m;
+  const AlignmentResult r = AlignToItem(seat_and_back, target, AlignmentOptions(), on_floor);
+  ExpectRecovers(r, yaw, offset);
+  // p_item.z = p.z + t.z: the floor (query z = floor_m) is the item's z = 0.
+  EXPECT_NEAR(r.T_item_query.translation().z(), -floor_m, 1e-9);
+  for (const AlignmentHypothesis& h : CoarseAlign(seat_and_back, target, AlignmentOptions(), on_floor)) {
+    EXPECT_NEAR(h.t.z(), -floor_m, 1e-9);
+  }
+}
+
+// Free in z, ICP lifts a chair to a table's top; standing on the floor the chair cannot reach the top
+// and fits the table far worse than a table does.
+TEST(AlignmentTest, OnTheFloorAChairIsNotLiftedOntoATableTop) {
+  std::vector<Eigen::Vector3f> chair, table, normals;
+  testing::ChairLike(0.01, &chair, &normals);
+  testing::TableLike(0.01, &table, &normals);
+  const AlignmentTarget chair_target(Keypoints(chair, 1)), table_target(Keypoints(table, 1));
+  std::vector<Eigen::Vector3f> table_top;  // what a camera above sees most of: the top, legs hidden
+  for (const auto& p : Moved(Keypoints(table, 2), YawOffset(0.4, {2.0, 1.0, 0.0}))) {
+    if (p.z() > 0.6) table_top.push_back(p);
+  }
+  AlignmentConstraints on_floor;
+  on_floor.floor_height_m = 0.0;
+  const AlignmentOptions options;
+  const AlignmentResult chair_free = AlignToItem(table_top, chair_target, options);
+  const AlignmentResult chair_held = AlignToItem(table_top, chair_target, options, on_floor);
+  const AlignmentResult table_held = AlignToItem(table_top, table_target, options, on_floor);
+  // Free, the chair's seat (z 0.40-0.46) is raised to the top (z 0.70-0.75).
+  EXPECT_LT(chair_free.T_item_query.translation().z(), -0.15);
+  EXPECT_NEAR(chair_held.T_item_query.translation().z(), 0.0, 1e-9);
+  EXPECT_LT(table_held.mean_squared_distance_m2, 0.1 * chair_held.mean_squared_distance_m2);
+}
+
 TEST(AlignmentTest, EmptyInputIsAStatus) {
   const AlignmentTarget target(std::vector<Eigen::Vector3f>{{0, 0, 0}});
   EXPECT_EQ(AlignToItem({}, target, AlignmentOptions()).status, AlignmentStatus::kEmptyInput);

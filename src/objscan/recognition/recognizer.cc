@@ -26,6 +26,7 @@ void RecognitionOptions::Validate() const {
   config::Require(estimate_model_points == 0 || estimate_model_points >= 3, "recognition.estimate_model_points",
                   "must be 0 (all) or at least 3");
   config::RequireNonNegative("recognition.space_weight", space_weight);
+  config::RequireNonNegative("recognition.floor_contact_m", floor_contact_m);
   config::Require(space_tolerance >= 0.0 && space_tolerance < 1.0, "recognition.space_tolerance", "must be in [0, 1)");
   alignment.Validate();
 }
@@ -122,10 +123,19 @@ std::vector<ScoredItem> Recognizer::Candidates(const QueryDescription& query, Re
   return database_.index(scope).Query(query.bow, count);
 }
 
+AlignmentConstraints Recognizer::ConstraintsFor(const QueryDescription& query, const SpaceEvidence* space) const {
+  AlignmentConstraints constraints;
+  if (options_.floor_contact_m <= 0.0 || space == nullptr || query.empty()) return constraints;
+  const std::optional<double> floor = space->FloorHeight();
+  if (floor && query.bounds.min_m.z() - *floor <= options_.floor_contact_m) constraints.floor_height_m = *floor;
+  return constraints;
+}
+
 SimilarModel Recognizer::Match(const QueryDescription& query, int entry, const SpaceEvidence* space) const {
   SimilarModel m;
   m.entry = entry;
-  m.alignment = AlignToItem(query.keypoints, database_.keypoint_target(entry), options_.alignment);
+  m.alignment = AlignToItem(query.keypoints, database_.keypoint_target(entry), options_.alignment,
+                            ConstraintsFor(query, space));
   if (m.alignment.ok()) Measure(query, query.keypoints, KdTree3(query.keypoints), true, 0, space, &m);
   return m;
 }
@@ -228,6 +238,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
   const std::vector<ScoredItem> shortlist = Candidates(query, scope, options_.shortlist_size);
   const int n = static_cast<int>(shortlist.size());
   const AlignmentOptions& ao = options_.alignment;
+  const AlignmentConstraints constraints = ConstraintsFor(query, space);
 
   // Stage 1 (only when refining fewer than all): coarse alignment of every entry and a rank estimate
   // from a keypoint subset; `order` lists the shortlist by that estimate, best first.
@@ -243,7 +254,7 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
     std::vector<double> estimate(n, 0.0);
     for (int i = 0; i < n; ++i) {
       const int entry = shortlist[i].item;
-      coarse[i] = CoarseAlign(query.keypoints, database_.keypoint_target(entry), ao);
+      coarse[i] = CoarseAlign(query.keypoints, database_.keypoint_target(entry), ao, constraints);
       if (coarse[i].empty()) continue;
       SimilarModel m;
       m.entry = entry;
@@ -268,8 +279,8 @@ std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, Re
     SimilarModel m;
     m.entry = shortlist[i].item;
     const AlignmentTarget& target = database_.keypoint_target(m.entry);
-    m.alignment = two_stage ? RefineAlignment(query.keypoints, target, coarse[i], ao)
-                            : AlignToItem(query.keypoints, target, ao);
+    m.alignment = two_stage ? RefineAlignment(query.keypoints, target, coarse[i], ao, constraints)
+                            : AlignToItem(query.keypoints, target, ao, constraints);
     if (m.alignment.ok()) Measure(query, query.keypoints, keypoint_tree, true, 0, space, &m);
     ScoreForRanking(shortlist[i], &m);
     refined.push_back(std::move(m));

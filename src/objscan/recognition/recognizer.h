@@ -63,6 +63,11 @@ struct RecognitionOptions {
   // shelves). On by default since be00778 (2026-11-25), with scanner.space.facing_min_cos = -1 (walls
   // explain any face near them); false = the paper's eq. (1).
   bool structure_completeness = true;
+  // Beyond the paper: a query whose lowest point lies within this of the detected floor (from the
+  // SpaceEvidence given to Retrieve or Match) stands on it, and every entry is aligned standing on the
+  // floor too (AlignmentConstraints::floor_height_m): gravity holds furniture down, so a chair may not
+  // be lifted onto a table top to fit it. 0 = the paper's alignment, free in z.
+  double floor_contact_m = 0.0;
   AlignmentOptions alignment;
 
   template <class V>
@@ -82,6 +87,7 @@ struct RecognitionOptions {
     v("space_weight", space_weight);
     v("space_tolerance", space_tolerance);
     v("structure_completeness", structure_completeness);
+    v("floor_contact_m", floor_contact_m);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -159,6 +165,8 @@ class Recognizer {
   void Measure(const QueryDescription& query, const std::vector<Eigen::Vector3f>& points, const KdTree3& points_tree,
                bool refined, int model_points, const SpaceEvidence* space, SimilarModel* m) const;
   void ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const;
+  // The constraints of a query's alignments: on the floor when it reaches down to it (floor_contact_m).
+  AlignmentConstraints ConstraintsFor(const QueryDescription& query, const SpaceEvidence* space) const;
 
   const ModelDatabase& database_;
   RecognitionOptions options_;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "objscan/geometry/pose.h"
 #include "objscan/recognition/shape_database_suite.h"
@@ -79,6 +80,48 @@ TEST_F(RecognizerTest, RetrievesTheRightModelAmongDistractorsAndPlacesIt) {
       }
     }
   }
+}
+
+// Space evidence with a floor and nothing else.
+class FloorOnly : public SpaceEvidence {
+ public:
+  explicit FloorOnly(double floor_m) : floor_m_(floor_m) {}
+  double ImpossibleFraction(const std::vector<Eigen::Vector3f>&, const Eigen::Vector3f&) const override { return 0.0; }
+  std::optional<double> FloorHeight() const override { return floor_m_; }
+
+ private:
+  double floor_m_;
+};
+
+// recognition.floor_contact_m: a query reaching down to the floor has every entry aligned standing
+// on it (the entry's z = 0 at the floor's height); a query off the floor, or the option at 0, leaves
+// the alignment free in z.
+TEST_F(RecognizerTest, AQueryOnTheFloorHasEveryEntryStandOnIt) {
+  RecognitionOptions options;
+  options.floor_contact_m = 0.05;
+  const Recognizer recognizer(*db_, options);
+  const double floor_m = 0.25;
+  const FloorOnly floor(floor_m);
+  // The chair's legs reach 1 cm above the floor, within floor_contact_m of it.
+  const QueryDescription on_floor =
+      recognizer.Describe(Query(&testing::ChairLike, Placement(30.0, {1.0, 2.0, floor_m + 0.01}), true));
+  const auto similar = recognizer.Retrieve(on_floor, RetrievalScope::kFullModels, &floor);
+  ASSERT_FALSE(similar.empty());
+  for (const SimilarModel& m : similar) {
+    SCOPED_TRACE(db_->entries()[m.entry].name);
+    EXPECT_NEAR(m.T_world_model().translation().z(), floor_m, 1e-6);
+  }
+  int entry = similar.front().entry;
+  EXPECT_NEAR(recognizer.Match(on_floor, entry, &floor).T_world_model().translation().z(), floor_m, 1e-6);
+  // Without the floor (no evidence, or the option at 0) the chair is placed where its legs are.
+  EXPECT_NEAR(recognizer.Match(on_floor, entry).T_world_model().translation().z(), floor_m + 0.01, 0.01);
+  const Recognizer free_z(*db_, RecognitionOptions());
+  const SimilarModel free_match = free_z.Match(on_floor, entry, &floor);
+  EXPECT_GT(std::abs(free_match.T_world_model().translation().z() - floor_m), 1e-4);
+  // A chair standing on a box 0.3 m high does not touch the floor: its alignment stays free.
+  const QueryDescription raised =
+      recognizer.Describe(Query(&testing::ChairLike, Placement(30.0, {1.0, 2.0, floor_m + 0.3}), true));
+  EXPECT_NEAR(recognizer.Match(raised, entry, &floor).T_world_model().translation().z(), floor_m + 0.3, 0.01);
 }
 
 // Space evidence that calls impossible every point above a height (world z).

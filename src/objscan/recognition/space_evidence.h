@@ -5,6 +5,7 @@
 // the air in front of the window or outside the room. The recognizer asks for the share of a placed
 // model's keypoints that lie where no surface can be.
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,6 +24,8 @@ class SpaceEvidence {
   // of observed structure that can hide it (the floor; a wall plane, within its span and height,
   // when the face turns to it); +inf when there is none. Model surface there is not seen apart from
   // the structure (RecognitionOptions::structure_completeness).
+  // The height of the detected floor, when there is one.
+  virtual std::optional<double> FloorHeight() const { return std::nullopt; }
   virtual double SquaredDistanceToStructure(const Eigen::Vector3f& /*p_world*/,
                                             const Eigen::Vector3f& /*n_world*/) const {
     return std::numeric_limits<double>::infinity();

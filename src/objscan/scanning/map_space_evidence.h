@@ -53,6 +53,11 @@ class MapSpaceEvidence : public recognition::SpaceEvidence {
 
   double SquaredDistanceToStructure(const Eigen::Vector3f& p_world, const Eigen::Vector3f& n_world) const override;
 
+  std::optional<double> FloorHeight() const override {
+    if (!structure_.has_floor) return std::nullopt;
+    return structure_.floor_height_m;
+  }
+
   // Whether one point is impossible for a query centred at `query_center_world`.
   bool Impossible(const Eigen::Vector3f& p_world, const Eigen::Vector3f& query_center_world) const;
 

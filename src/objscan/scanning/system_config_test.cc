@@ -48,6 +48,7 @@ TEST(SystemConfigTest, PaperPresetSwitchesOffWhatGoesBeyondThePaper) {
   EXPECT_FALSE(paper.scanner.coverage_views.enabled);
   EXPECT_FALSE(paper.recognition.structure_completeness);
   EXPECT_FALSE(paper.recognition.compose_unions);
+  EXPECT_DOUBLE_EQ(paper.recognition.floor_contact_m, 0.0);
   EXPECT_EQ(paper.postsegmentation.smoothness, "paper");
   EXPECT_FALSE(paper.postsegmentation.split_instances);
   EXPECT_FALSE(paper.postsegmentation.merge_objects);
