@@ -354,6 +354,15 @@ std::vector<recognition::ModelSource> ModelDisjointSources(const std::vector<Wor
       if (!o.model_name.empty()) excluded.insert(o.model_name);
     }
   }
+  // Every placement of a model in the other worlds: where it stands (the worlds' floors are at z = 0).
+  std::map<std::string, std::vector<float>> support;
+  for (std::size_t w = 0; w < worlds.size(); ++w) {
+    if (w == test_index) continue;
+    for (const auto& o : worlds[w].scene.objects()) {
+      if (o.IsStructural() || o.model_name.empty() || o.mesh.triangles.empty()) continue;
+      support[o.model_name].push_back(static_cast<float>(worlds[w].scene.ObjectBounds(o).min_m.z()));
+    }
+  }
   std::set<std::string> added;
   std::vector<recognition::ModelSource> sources;
   for (std::size_t w = 0; w < worlds.size(); ++w) {
@@ -376,6 +385,8 @@ std::vector<recognition::ModelSource> ModelDisjointSources(const std::vector<Wor
       }
       const geometry::TriangleMesh mesh = o.mesh;  // the object as the world places it (metres, Z up)
       s.load_mesh = [mesh] { return mesh; };
+      s.support_heights_m = support[o.model_name];
+      std::sort(s.support_heights_m.begin(), s.support_heights_m.end());
       sources.push_back(std::move(s));
     }
   }

@@ -319,7 +319,9 @@ TEST(WorldDatabaseTest, ModelDisjointSources) {
   worlds[1].scene.Add(Object("400", Category::kOther));  // category other: kept
   worlds[1].scene.Add(Object("wall", Category::kWall));  // structural: left out
   worlds[2].world_path = "/w/c/room.world";
-  worlds[2].scene.Add(Object("300", Category::kBed));  // once only
+  world::SceneObject raised_bed = Object("300", Category::kBed);  // once only
+  raised_bed.mesh = geometry::MakeBox(Eigen::Vector3d(0, 0, 0.4), Eigen::Vector3d(1, 1, 1));
+  worlds[2].scene.Add(raised_bed);
   worlds[2].scene.Add(Object("500", Category::kSofa));
   const auto sources = ModelDisjointSources(worlds, 0);
   std::vector<std::string> names;
@@ -327,6 +329,10 @@ TEST(WorldDatabaseTest, ModelDisjointSources) {
   EXPECT_EQ(names, (std::vector<std::string>{"bed/300", "other/400", "sofa/500"}));
   EXPECT_EQ(sources[0].category, Category::kBed);
   EXPECT_EQ(sources[1].category, Category::kOther);
+  // Support heights: the bottoms of every placement in the other worlds (boxes of Object() are
+  // centred on the origin), ascending.
+  EXPECT_EQ(sources[0].support_heights_m, (std::vector<float>{-0.25f, 0.4f}));
+  EXPECT_EQ(sources[2].support_heights_m, (std::vector<float>{-0.25f}));
   EXPECT_EQ(sources[0].load_mesh().triangles.size(), 12u);
   // Test world 1 excludes 100, 300 and 400: the rest of worlds 0 and 2.
   names.clear();

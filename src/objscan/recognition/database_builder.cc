@@ -381,9 +381,27 @@ std::vector<int> SampledIndices(world::Category category, int variants, std::uin
 
 }  // namespace
 
+std::vector<std::vector<float>> ProceduralSupportHeights() {
+  std::vector<std::vector<float>> heights(world::kNumCategories);
+  for (const std::string& room : world::procedural::RoomCategories()) {
+    for (int k = 1; k <= kSupportRoomsPerCategory; ++k) {
+      const world::Scene scene = world::procedural::GenerateRoom(room, world::procedural::kDatabaseSeedBit | k);
+      for (const world::SceneObject& o : scene.objects()) {
+        if (o.IsStructural() || o.mesh.triangles.empty()) continue;
+        // Procedural rooms have their floor at z = 0.
+        heights[static_cast<std::size_t>(world::CategoryId(o.category))].push_back(
+            static_cast<float>(scene.ObjectBounds(o).min_m.z()));
+      }
+    }
+  }
+  for (auto& h : heights) std::sort(h.begin(), h.end());
+  return heights;
+}
+
 std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index,
                                                 ProceduralSampling sampling) {
   std::vector<ModelSource> sources;
+  const std::vector<std::vector<float>> support = ProceduralSupportHeights();
   for (world::Category category : world::procedural::FurnitureCategories()) {
     for (int k : SampledIndices(category, variants, first_index, sampling)) {
       const std::uint64_t seed = world::procedural::DatabaseModelSeed(first_index + k);
@@ -392,6 +410,7 @@ std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t firs
       s.name = std::string(world::CategoryName(category)) + "/" + std::to_string(first_index + k);
       s.source = "procedural/" + std::string(world::CategoryName(category)) + "/" + std::to_string(seed);
       s.load_mesh = [category, seed] { return world::procedural::GenerateFurniture(category, seed).mesh; };
+      s.support_heights_m = support[static_cast<std::size_t>(world::CategoryId(category))];
       sources.push_back(std::move(s));
     }
   }
@@ -425,6 +444,7 @@ struct ModelInfo {
   world::Category category;
   std::string name;
   std::string source;
+  std::vector<float> support_heights_m;
 };
 
 // Vocabulary, histograms and index from described models.
@@ -471,6 +491,7 @@ ModelDatabase Assemble(std::vector<PendingModel>* pending_models, const std::vec
     model.name = info[m].name;
     model.category = info[m].category;
     model.source = info[m].source;
+    model.support_heights_m = info[m].support_heights_m;
     const int model_index = static_cast<int>(db.models().size());
     for (auto& pe : pending[m].entries) {
       descriptors.resize(pe.descriptors.size());
@@ -508,7 +529,7 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   int done = 0;
   sim::ParallelForBlocks(n_models, workers, [&](int m) {
     const ModelSource& source = sources[m];
-    info[m] = {source.category, source.name, source.source};
+    info[m] = {source.category, source.name, source.source, source.support_heights_m};
     const geometry::TriangleMesh mesh = NormalizeModel(source.load_mesh(), TypicalHeight(source.category));
     if (!mesh.Empty()) {
       Rng noise_rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(m)));
@@ -531,7 +552,7 @@ ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, co
   std::vector<PendingModel> pending(n_models);
   std::vector<ModelInfo> info(n_models);
   sim::ParallelForBlocks(n_models, options.threads, [&](int m) {
-    info[m] = {models[m].category, models[m].name, models[m].source};
+    info[m] = {models[m].category, models[m].name, models[m].source, models[m].support_heights_m};
     pending[m] = DescribeScan(models[m].scan, models[m].category, models[m].name, m, options, *descriptor);
   });
   return Assemble(&pending, info, options, *descriptor, progress);

@@ -19,7 +19,8 @@ namespace objscan::recognition {
 
 // Bump whenever a change to the builder changes the databases it builds (the cached default database
 // of objscan run is named after it and the build options, so a stale cache is never reused).
-constexpr int kDatabaseBuilderRevision = 1;
+// 2: models carry support heights (procedural ones from rooms the database generates).
+constexpr int kDatabaseBuilderRevision = 2;
 
 struct DatabaseBuildOptions {
   VirtualScanOptions scan;
@@ -65,6 +66,9 @@ struct ModelSource {
   // Returns the mesh in metres with Z up (any placement: the builder normalises it). Called once,
   // possibly on a worker thread; throws InputError naming the file on failure.
   std::function<geometry::TriangleMesh()> load_mesh;
+  // Heights above the floor at which the model (or, for procedural models, its category) stands in
+  // the scenes it comes from (DatabaseModel::support_heights_m); empty when unknown.
+  std::vector<float> support_heights_m;
 };
 
 // Models of a folder: <category>/<name>.<ext> and ModelNet-style <category>/{train,test}/<name>.<ext>
@@ -99,9 +103,16 @@ const char* ProceduralSamplingName(ProceduralSampling sampling);
 ProceduralSampling ParseProceduralSampling(const std::string& name, const std::string& field);
 
 // `variants` procedural models per furniture category, named "<category>/<k>" for the model of seed
-// DatabaseModelSeed(first_index + k).
+// DatabaseModelSeed(first_index + k). Their support heights are those of their category in
+// ProceduralSupportHeights().
 std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t first_index = 0,
                                                 ProceduralSampling sampling = ProceduralSampling::kFirstSeeds);
+
+// Where the procedural generator stands each furniture category: the heights above the floor of the
+// bottoms of its objects in kSupportRoomsPerCategory rooms of every room category, drawn from scene
+// seeds with the top bit set (no benchmark room's seed), indexed by world::CategoryId.
+constexpr int kSupportRoomsPerCategory = 3;
+std::vector<std::vector<float>> ProceduralSupportHeights();
 
 // Greedy k-medoids: `count` indices into `features` (rows of equal length), ascending. Each step adds
 // the row that most lowers the summed distance of all rows to their nearest chosen one (the lowest
@@ -124,6 +135,7 @@ struct ScannedModel {
   std::string name;
   std::string source;
   ModelScan scan;  // in the database frame (Z up, standing on z = 0)
+  std::vector<float> support_heights_m;
 };
 ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, const DatabaseBuildOptions& options,
                                      const ProgressCallback& progress = nullptr);

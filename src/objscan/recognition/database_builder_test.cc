@@ -60,6 +60,7 @@ TEST(DatabaseBuilderTest, ProceduralModelsGiveFullModelsComponentsAndPairs) {
   ASSERT_EQ(sources.size(), 2u);
   const ModelDatabase db = BuildDatabase(sources, FastOptions());
   ASSERT_EQ(db.models().size(), 2u);
+  for (std::size_t m = 0; m < 2; ++m) EXPECT_EQ(db.models()[m].support_heights_m, sources[m].support_heights_m);
   std::set<EntryKind> kinds;
   for (const auto& e : db.entries()) {
     kinds.insert(e.kind);
@@ -93,6 +94,30 @@ TEST(DatabaseBuilderTest, ProceduralModelsGiveFullModelsComponentsAndPairs) {
   const auto similar = recognizer.Retrieve(recognizer.Describe(view.surface), RetrievalScope::kFullModels);
   ASSERT_FALSE(similar.empty());
   EXPECT_EQ(db.entries()[similar[0].entry].category, db.models()[0].category);
+}
+
+// Where the generator stands its furniture: chairs, beds and doors on the floor, monitors on desks,
+// dressers and stands, windows in the wall above it; every procedural model carries its category's
+// heights into the database.
+TEST(DatabaseBuilderTest, ProceduralSupportHeightsAreWhereTheGeneratorStandsFurniture) {
+  using world::Category;
+  const std::vector<std::vector<float>> heights = ProceduralSupportHeights();
+  ASSERT_EQ(heights.size(), static_cast<std::size_t>(world::kNumCategories));
+  const auto of = [&](Category c) -> const std::vector<float>& {
+    return heights[static_cast<std::size_t>(world::CategoryId(c))];
+  };
+  for (Category c : {Category::kChair, Category::kBed, Category::kDoor, Category::kMonitor, Category::kWindow}) {
+    SCOPED_TRACE(world::CategoryName(c));
+    ASSERT_FALSE(of(c).empty());
+    EXPECT_TRUE(std::is_sorted(of(c).begin(), of(c).end()));
+  }
+  for (Category c : {Category::kChair, Category::kBed, Category::kDoor}) {
+    for (float h : of(c)) EXPECT_NEAR(h, 0.0, 0.02) << world::CategoryName(c);
+  }
+  for (float h : of(Category::kMonitor)) EXPECT_GT(h, 0.3);
+  for (float h : of(Category::kWindow)) EXPECT_GT(h, 0.3);
+  EXPECT_EQ(ProceduralSupportHeights(), heights);  // same rooms, same heights
+  for (const ModelSource& s : ProceduralModelSources(1)) EXPECT_EQ(s.support_heights_m, of(s.category)) << s.name;
 }
 
 TEST(DatabaseBuilderTest, FolderListingFindsCategoriesAndModelNetLayout) {

@@ -1,5 +1,6 @@
 #include "objscan/recognition/model_database.h"
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -166,6 +167,8 @@ void ModelDatabase::Save(const std::string& path) const {
     w.String(world::CategoryName(m.category));
     w.String(m.source);
     w.Pod<std::int32_t>(m.full_entry);
+    w.Pod<std::uint32_t>(static_cast<std::uint32_t>(m.support_heights_m.size()));
+    w.Array(m.support_heights_m.data(), m.support_heights_m.size());
   }
   // Entries.
   w.Pod<std::uint32_t>(static_cast<std::uint32_t>(entries_.size()));
@@ -289,13 +292,18 @@ ModelDatabase ModelDatabase::Load(const std::string& path) {
   db.vocabulary_ = Vocabulary(dim, std::move(words), sigma2, soft);
   const std::uint32_t num_bins = db.NumBins();
 
-  const std::uint32_t n_models = r.Count(4 + 4 + 4 + 4, "models");
+  const std::uint32_t n_models = r.Count(4 + 4 + 4 + 4 + 4, "models");
   db.models_.resize(n_models);
   for (auto& m : db.models_) {
     m.name = r.String("model name");
     m.category = ReadCategory(&r, "model category");
     m.source = r.String("model source");
     m.full_entry = r.Pod<std::int32_t>("model");
+    m.support_heights_m.resize(r.Count(sizeof(float), "model support heights"));
+    r.Array(m.support_heights_m.data(), m.support_heights_m.size(), "model support heights");
+    for (float h : m.support_heights_m) {
+      if (!std::isfinite(h)) r.Fail("model support heights");
+    }
   }
   const std::uint32_t n_entries = r.Count(1 + 4 + 4 + 4 + 4 + 4 + 4, "entries");
   db.entries_.resize(n_entries);

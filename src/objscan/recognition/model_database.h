@@ -45,6 +45,10 @@ struct DatabaseModel {
   world::Category category = world::Category::kOther;
   std::string source;            // file path or "procedural/<category>/<seed>"
   std::int32_t full_entry = -1;  // index of its full-model entry
+  // Where models like it stand in the scenes the database comes from: the height of the bottom above
+  // the floor, one per placement seen (a monitor on desks, a lamp on the floor and on night stands);
+  // empty when unknown (models from a folder of meshes).
+  std::vector<float> support_heights_m;
 };
 
 // How the entries were described; a query is described with the same settings.
@@ -58,7 +62,8 @@ struct DatabaseSettings {
 class ModelDatabase {
  public:
   // 2: spatial BoW with absolute-height, normal and size words (settings layout changed).
-  static constexpr std::uint32_t kFormatVersion = 2;
+  // 3: each model's support heights.
+  static constexpr std::uint32_t kFormatVersion = 3;
 
   ModelDatabase() = default;
   ModelDatabase(ModelDatabase&&) = default;

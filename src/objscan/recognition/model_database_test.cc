@@ -95,6 +95,18 @@ TEST_F(ModelDatabaseTest, SaveLoadRoundTrip) {
   EXPECT_TRUE(loaded.finalized());
 }
 
+TEST_F(ModelDatabaseTest, SupportHeightsRoundTrip) {
+  const fs::path path = dir_ / "support.db";
+  db_->Save(path.string());
+  ModelDatabase db = ModelDatabase::Load(path.string());
+  ASSERT_GE(db.models().size(), 2u);
+  db.mutable_models()[0].support_heights_m = {0.0f, 0.72f, 0.75f};
+  db.Save(path.string());
+  const ModelDatabase loaded = ModelDatabase::Load(path.string());
+  EXPECT_EQ(loaded.models()[0].support_heights_m, (std::vector<float>{0.0f, 0.72f, 0.75f}));
+  EXPECT_TRUE(loaded.models()[1].support_heights_m.empty());
+}
+
 TEST_F(ModelDatabaseTest, RejectsCorruptTruncatedForeignAndOldFiles) {
   const fs::path good = dir_ / "good.db";
   db_->Save(good.string());

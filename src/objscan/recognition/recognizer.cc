@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include "objscan/common/rng.h"
@@ -27,6 +29,7 @@ void RecognitionOptions::Validate() const {
                   "must be 0 (all) or at least 3");
   config::RequireNonNegative("recognition.space_weight", space_weight);
   config::RequireNonNegative("recognition.floor_contact_m", floor_contact_m);
+  config::RequireNonNegative("recognition.support_height_tolerance_m", support_height_tolerance_m);
   config::Require(space_tolerance >= 0.0 && space_tolerance < 1.0, "recognition.space_tolerance", "must be in [0, 1)");
   alignment.Validate();
 }
@@ -36,6 +39,27 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
   options_.Validate();
   if (!database_.finalized()) throw std::invalid_argument("Recognizer: database not finalized");
   descriptor_ = MakeDescriptorExtractor(database_.settings().descriptor);
+  support_heights_.resize(world::kNumCategories);
+  for (const DatabaseModel& m : database_.models()) {
+    auto& h = support_heights_[static_cast<std::size_t>(world::CategoryId(m.category))];
+    h.insert(h.end(), m.support_heights_m.begin(), m.support_heights_m.end());
+  }
+  for (auto& h : support_heights_) std::sort(h.begin(), h.end());
+}
+
+double Recognizer::SupportFactor(int entry, double height_m) const {
+  const std::vector<float>& heights =
+      support_heights_[static_cast<std::size_t>(world::CategoryId(database_.entries()[entry].category))];
+  if (heights.empty()) return 1.0;
+  // The nearest support height: the first at or above height_m, or the one before it.
+  const auto it = std::lower_bound(heights.begin(), heights.end(), static_cast<float>(height_m));
+  double d = std::numeric_limits<double>::infinity();
+  if (it != heights.end()) d = static_cast<double>(*it) - height_m;
+  if (it != heights.begin()) d = std::min(d, height_m - static_cast<double>(*(it - 1)));
+  const double t = options_.support_height_tolerance_m;
+  if (d <= t) return 1.0;
+  const double excess = (d - t) / t;
+  return std::exp(-0.5 * excess * excess);
 }
 
 namespace {
@@ -209,6 +233,16 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
       ++n;
     }
     if (n > 0) m->visible_objectness = std::exp(-std::sqrt(o.similarity_m2 + visible_sum / n) / diag);
+  }
+  m->support_factor = 1.0;
+  if (space != nullptr && options_.support_height_tolerance_m > 0.0) {
+    if (const std::optional<double> floor = space->FloorHeight()) {
+      // The entry's z = 0 (where it stands) placed in the query frame.
+      m->support_factor = SupportFactor(m->entry, T_query_item.translation().z() - *floor);
+      o.objectness *= m->support_factor;
+      m->fit *= m->support_factor;
+      m->visible_objectness *= m->support_factor;
+    }
   }
   if (check_space) {
     const Eigen::Vector3f center = query.bounds.Center().cast<float>();

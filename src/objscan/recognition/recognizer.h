@@ -68,6 +68,14 @@ struct RecognitionOptions {
   // floor too (AlignmentConstraints::floor_height_m): gravity holds furniture down, so a chair may not
   // be lifted onto a table top to fit it. 0 = the paper's alignment, free in z.
   double floor_contact_m = 0.0;
+  // Beyond the paper: a hypothesis that stands its model at a height above the floor where the
+  // database's scenes never stand a model of its category (DatabaseModel::support_heights_m: a
+  // monitor on the floor, a refrigerator on a counter) loses objectness: with d the distance from its
+  // height to the nearest height its category stands at and t this tolerance, O(c, m), fit and the
+  // rank score are multiplied by exp(-((d - t) / t)^2 / 2) when d > t (alignments and furniture vary
+  // by a few centimetres; 2t off costs 40%, 3t 86%). Needs the floor (SpaceEvidence::FloorHeight);
+  // categories without support heights keep their score. 0 = off (the paper).
+  double support_height_tolerance_m = 0.0;
   AlignmentOptions alignment;
 
   template <class V>
@@ -88,6 +96,7 @@ struct RecognitionOptions {
     v("space_tolerance", space_tolerance);
     v("structure_completeness", structure_completeness);
     v("floor_contact_m", floor_contact_m);
+    v("support_height_tolerance_m", support_height_tolerance_m);
     v("alignment", alignment);
   }
   void Validate() const;
@@ -117,6 +126,7 @@ struct SimilarModel {
   double fit = 0.0;           // exp(-sqrt(d(c, m)) / Diag(c))
   double visible_objectness = 0.0;  // eq. (1) with completeness over sensor-facing model keypoints
   double impossible_fraction = 0.0;  // share of the aligned entry's keypoints where no surface can be
+  double support_factor = 1.0;       // RecognitionOptions::support_height_tolerance_m's factor
   double rank_score = 0.0;
   // The entry's pose in the query's (world) frame: T_world_model = T_item_query^-1.
   Eigen::Affine3d T_world_model() const { return alignment.T_item_query.inverse(); }
@@ -167,10 +177,14 @@ class Recognizer {
   void ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) const;
   // The constraints of a query's alignments: on the floor when it reaches down to it (floor_contact_m).
   AlignmentConstraints ConstraintsFor(const QueryDescription& query, const SpaceEvidence* space) const;
+  // support_height_tolerance_m's factor for an entry whose z = 0 stands at height_m above the floor.
+  double SupportFactor(int entry, double height_m) const;
 
   const ModelDatabase& database_;
   RecognitionOptions options_;
   std::unique_ptr<DescriptorExtractor> descriptor_;
+  // Per category (world::CategoryId): the support heights of all its models, ascending.
+  std::vector<std::vector<float>> support_heights_;
 };
 
 }  // namespace objscan::recognition

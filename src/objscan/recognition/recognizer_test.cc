@@ -124,6 +124,46 @@ TEST_F(RecognizerTest, AQueryOnTheFloorHasEveryEntryStandOnIt) {
   EXPECT_NEAR(recognizer.Match(raised, entry, &floor).T_world_model().translation().z(), floor_m + 0.3, 0.01);
 }
 
+// recognition.support_height_tolerance_m: a hypothesis standing its model where its category never
+// stands loses objectness by exp(-((d - t) / t)^2 / 2), nothing within t of a support height.
+TEST_F(RecognizerTest, AModelWhereItsCategoryNeverStandsLosesObjectness) {
+  const double floor_m = 0.1;
+  const FloorOnly floor(floor_m);
+  const Recognizer plain(*db_, RecognitionOptions());
+  const QueryDescription q =
+      plain.Describe(Query(&testing::ChairLike, Placement(30.0, {1.0, 2.0, floor_m}), false));
+  const auto similar = plain.Retrieve(q, RetrievalScope::kFullModels, &floor);
+  ASSERT_FALSE(similar.empty());
+  const int entry = similar.front().entry;
+  const SimilarModel unscaled = plain.Match(q, entry, &floor);
+  const double height_m = unscaled.T_world_model().translation().z() - floor_m;  // ~0: on the floor
+  EXPECT_NEAR(height_m, 0.0, 0.02);
+  EXPECT_DOUBLE_EQ(unscaled.support_factor, 1.0);
+  // The database's models of the entry's category stand at 0.5 m (the test restores them).
+  const world::Category category = db_->entries()[entry].category;
+  std::vector<std::vector<float>> saved;
+  for (DatabaseModel& m : db_->mutable_models()) {
+    saved.push_back(m.support_heights_m);
+    if (m.category == category) m.support_heights_m = {0.5f};
+  }
+  RecognitionOptions options;
+  options.support_height_tolerance_m = 0.1;
+  const Recognizer with_support(*db_, options);
+  const SimilarModel scaled = with_support.Match(q, entry, &floor);
+  const double excess = (0.5 - height_m - 0.1) / 0.1;
+  EXPECT_NEAR(scaled.support_factor, std::exp(-0.5 * excess * excess), 1e-4);
+  EXPECT_NEAR(scaled.objectness.objectness, unscaled.objectness.objectness * scaled.support_factor, 1e-9);
+  EXPECT_NEAR(scaled.fit, unscaled.fit * scaled.support_factor, 1e-9);
+  // Without the floor nothing is known of the height: no factor.
+  EXPECT_DOUBLE_EQ(with_support.Match(q, entry).support_factor, 1.0);
+  // Within the tolerance of a support height: no factor.
+  for (DatabaseModel& m : db_->mutable_models()) {
+    if (m.category == category) m.support_heights_m = {static_cast<float>(height_m + 0.08)};
+  }
+  EXPECT_DOUBLE_EQ(Recognizer(*db_, options).Match(q, entry, &floor).support_factor, 1.0);
+  for (std::size_t i = 0; i < saved.size(); ++i) db_->mutable_models()[i].support_heights_m = saved[i];
+}
+
 // Space evidence that calls impossible every point above a height (world z).
 class CeilingEvidence : public SpaceEvidence {
  public:

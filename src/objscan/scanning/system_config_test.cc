@@ -49,6 +49,7 @@ TEST(SystemConfigTest, PaperPresetSwitchesOffWhatGoesBeyondThePaper) {
   EXPECT_FALSE(paper.recognition.structure_completeness);
   EXPECT_FALSE(paper.recognition.compose_unions);
   EXPECT_DOUBLE_EQ(paper.recognition.floor_contact_m, 0.0);
+  EXPECT_DOUBLE_EQ(paper.recognition.support_height_tolerance_m, 0.0);
   EXPECT_EQ(paper.postsegmentation.smoothness, "paper");
   EXPECT_FALSE(paper.postsegmentation.split_instances);
   EXPECT_FALSE(paper.postsegmentation.merge_objects);
