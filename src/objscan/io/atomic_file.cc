@@ -1,5 +1,6 @@
 #include "objscan/io/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,12 +22,34 @@ AtomicFile::~AtomicFile() {
   if (!committed_) std::remove(temp_path_.c_str());
 }
 
+namespace {
+
+// fsync of a file or folder by path; false (errno set) when it cannot be opened or synced.
+bool SyncPath(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  const int saved = errno;
+  ::close(fd);
+  errno = saved;
+  return ok;
+}
+
+}  // namespace
+
 void AtomicFile::Commit() {
-  if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+  // The data reaches the disk before the rename makes it the target, so a crash (power loss, a
+  // killed machine) leaves the old file or the complete new one, never a renamed empty one.
+  if (!SyncPath(temp_path_, O_RDONLY) || std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
     throw InputError(path_ + ": cannot write (" + reason + ")");
   }
   committed_ = true;
+  // The rename itself is durable once the folder is synced. Best effort: the file is complete either
+  // way, and some file systems refuse to sync a folder.
+  std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+  if (folder.empty()) folder = ".";
+  SyncPath(folder.string(), O_RDONLY | O_DIRECTORY);
 }
 
 void WriteFileAtomically(const std::string& path, const std::string& bytes) {

@@ -1,6 +1,7 @@
 #pragma once
-// Atomic file writes: data goes to a temporary file beside the target, which is renamed over the
-// target only once it is complete, so a failed write never leaves a half-written file behind.
+// Atomic file writes: data goes to a temporary file beside the target, which is synced to disk and
+// renamed over the target only once it is complete (then the folder is synced), so a failed write or
+// a crash never leaves a half-written file behind.
 #include <string>
 
 namespace objscan::io {
@@ -16,7 +17,8 @@ class AtomicFile {
 
   const std::string& temp_path() const { return temp_path_; }
   const std::string& path() const { return path_; }
-  // Renames the temporary file to the target; throws InputError naming the target on failure.
+  // Syncs the temporary file, renames it to the target and syncs the folder; throws InputError naming
+  // the target on failure.
   void Commit();
 
  private:

@@ -192,7 +192,10 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
   std::vector<std::uint32_t> vertical;
   std::vector<double> azimuth, offset;
   std::unordered_map<std::int64_t, double> votes;
-  auto bin_key = [](std::int64_t a, std::int64_t o) { return (o << 16) ^ a; };
+  // Key o * 2^16 + a for an angle bin a in [0, 2^16): the same value as (o << 16) ^ a, without
+  // shifting a negative offset bin (undefined behaviour before C++20).
+  constexpr std::int64_t kAngleBins = std::int64_t{1} << 16;
+  auto bin_key = [](std::int64_t a, std::int64_t o) { return o * kAngleBins + a; };
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f& nr = normals[i];
     if (std::fabs(nr.z()) > sin_wall) continue;
@@ -213,8 +216,8 @@ StructureResult StructureDetector::Update(SurfaceMap* map) const {
   };
   std::vector<Candidate> candidates;
   for (const auto& kv : votes) {
-    const std::int64_t o = kv.first >> 16;
-    const std::int64_t a = kv.first - (o << 16);
+    const std::int64_t a = (kv.first % kAngleBins + kAngleBins) % kAngleBins;
+    const std::int64_t o = (kv.first - a) / kAngleBins;
     candidates.push_back({kv.second, a, o});
   }
   // Neighbourhood sums (3 x 3 bins, angle wraps) make peaks robust to bin boundaries.
