@@ -15,7 +15,7 @@ namespace objscan::scanning {
 
 // The rules objscan lists by default, in their order.
 std::vector<std::string> DefaultReportRules();
-// Every rule name (the default list, then the rules not listed by default).
+// Every rule name: reopen_outgrown, the default list, drop_unsure.
 std::vector<std::string> AllReportRules();
 
 struct ReportOptions {
