@@ -142,7 +142,8 @@ recognition::ModelDatabase DatabaseWithoutParts(const recognition::ModelDatabase
 // named "<category>/<id>". Structural objects and objects without a model id are left out; objects
 // of category `other` (plants, towels, boxes) are kept, as the paper's database has an Other
 // category: a query recognised as one of them is "none of the benchmark's categories", not a chair.
-// Each source's support heights are the heights of the bottoms of all its placements in those worlds. `source` is the object's mesh file when one is found beside the world
+// Each source's support heights are the heights of the bottoms of all its placements in those
+// worlds. `source` is the object's mesh file when one is found beside the world
 // (<world dir>/<id>/<id>.{dae,obj}), else "<world file>#<object name>".
 struct WorldModels {
   std::string world_path;

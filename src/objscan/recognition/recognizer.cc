@@ -44,7 +44,11 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
     auto& h = support_heights_[static_cast<std::size_t>(world::CategoryId(m.category))];
     h.insert(h.end(), m.support_heights_m.begin(), m.support_heights_m.end());
   }
-  for (auto& h : support_heights_) std::sort(h.begin(), h.end());
+  // Models of one category may share their heights (procedural ones all carry their category's).
+  for (auto& h : support_heights_) {
+    std::sort(h.begin(), h.end());
+    h.erase(std::unique(h.begin(), h.end()), h.end());
+  }
 }
 
 double Recognizer::SupportFactor(int entry, double height_m) const {

@@ -183,7 +183,7 @@ class Recognizer {
   const ModelDatabase& database_;
   RecognitionOptions options_;
   std::unique_ptr<DescriptorExtractor> descriptor_;
-  // Per category (world::CategoryId): the support heights of all its models, ascending.
+  // Per category (world::CategoryId): the distinct support heights of its models, ascending.
   std::vector<std::vector<float>> support_heights_;
 };
 
