@@ -22,6 +22,7 @@
 #include "objscan/eval/report.h"
 #include "objscan/io/atomic_file.h"
 #include "objscan/io/scene_spec.h"
+#include "objscan/recognition/database_cache.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/scanning/system_config.h"
 
@@ -78,19 +79,44 @@ std::string JoinPaths(const std::string& a, const std::string& b) {
   return a + ":" + b;
 }
 
-// Builds `path` with `build` unless it exists (an interrupted build leaves nothing: Save is atomic).
+// True when `path` holds a database whose checksum verifies.
+bool ValidDatabase(const std::string& path) {
+  try {
+    recognition::ModelDatabase::Verify(path);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+// Builds `path` with `build` unless it holds a valid database (a killed build leaves nothing under the
+// name, as Save is atomic; a damaged file is rebuilt: database_cache.h).
 template <class BuildFn>
 void EnsureDatabase(const std::string& path, const std::string& what, BuildFn build) {
-  if (fs::exists(path)) return;
   std::error_code ec;
   fs::create_directories(fs::path(path).parent_path(), ec);
   if (ec) throw InputError(fs::path(path).parent_path().string() + ": cannot create: " + ec.message());
-  std::fprintf(stderr, "objscan bench: building %s -> %s\n", what.c_str(), path.c_str());
+  io::RemoveStaleTempFiles(fs::path(path).parent_path().string());
   const auto start = std::chrono::steady_clock::now();
-  const recognition::ModelDatabase db = build();
-  FinishProgress();
-  db.Save(path);
-  std::fprintf(stderr, "objscan bench: %zu models, %zu entries in %s\n", db.models().size(), db.entries().size(),
+  std::size_t models = 0, entries = 0;
+  const recognition::CachedDatabaseStatus status = recognition::EnsureCachedDatabase(
+      path,
+      [&] {
+        recognition::ModelDatabase db = build();
+        FinishProgress();
+        models = db.models().size();
+        entries = db.entries().size();
+        return db;
+      },
+      [&](const recognition::CachedDatabaseStatus& s) {
+        if (!s.damage.empty()) {
+          std::fprintf(stderr, "objscan bench: the database is damaged, rebuilding %s: %s\n", what.c_str(), s.damage.c_str());
+        } else {
+          std::fprintf(stderr, "objscan bench: building %s -> %s\n", what.c_str(), path.c_str());
+        }
+      });
+  if (!status.built) return;
+  std::fprintf(stderr, "objscan bench: %zu models, %zu entries in %s\n", models, entries,
                Duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()).c_str());
 }
 
@@ -121,6 +147,8 @@ int RunBench(const BenchArgs& a) {
   std::vector<std::string> check_sets = run_sets;
   if (!model_path.empty()) check_sets.push_back("scene.model_path=" + model_path);
   const scanning::SystemConfig config = scanning::LoadSystemConfig("", check_sets);
+  // A damaged --db fails here, in one line, not in every run.
+  if (!a.db.empty()) recognition::ModelDatabase::Verify(a.db);
 
   const std::string out = fs::absolute(a.out).lexically_normal().string();
   const std::vector<eval::BenchJob> jobs = eval::ShardJobs(eval::MakeJobs(suite.scenes, methods, out), shard);
@@ -140,7 +168,7 @@ int RunBench(const BenchArgs& a) {
     for (const auto& job : pending) {
       const std::string path = (db_dir / "worlds" / (job.scene.id + (job.method.database_without_parts ? "-no-parts" : "") + ".db")).string();
       database_of_run[job.run_dir] = path;
-      if (!fs::exists(path)) need.insert(path);
+      if (!ValidDatabase(path)) need.insert(path);
     }
     if (!need.empty()) {
       std::fprintf(stderr, "objscan bench: loading %zu worlds for the model-disjoint databases\n", suite.scenes.size());
@@ -232,6 +260,7 @@ int RunBench(const BenchArgs& a) {
   info["runs_wall_s"] = runs_seconds;
   std::error_code ec;
   fs::create_directories(out, ec);
+  io::RemoveStaleTempFiles(out);  // a bench.json writer that was killed
   const std::string info_name = shard.count > 1 ? "bench-shard-" + std::to_string(shard.index) + ".json" : "bench.json";
   io::WriteFileAtomically((fs::path(out) / info_name).string(), info.dump(2) + "\n");
 

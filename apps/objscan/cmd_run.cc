@@ -23,6 +23,7 @@
 #include "objscan/io/atomic_file.h"
 #include "objscan/io/scene_spec.h"
 #include "objscan/recognition/database_builder.h"
+#include "objscan/recognition/database_cache.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/scanning/scanner.h"
 #include "objscan/scanning/system_config.h"
@@ -81,27 +82,37 @@ std::string DefaultDatabasePath(bool verbose) {
                            "-n" + std::to_string(kDefaultDatabaseVariants) + "-" +
                            recognition::ProceduralSamplingName(kDefaultDatabaseSampling) + "-" + BuildOptionsKey(options) +
                            ".db";
-  if (fs::exists(path)) return path;
   std::error_code ec;
   fs::create_directories(CacheDir(), ec);
   if (ec) throw InputError(CacheDir() + ": cannot create the database cache folder: " + ec.message());
-  if (verbose) {
-    std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n", path.c_str());
-  }
-  const recognition::ModelDatabase db = recognition::BuildDatabase(
-      recognition::ProceduralModelSources(kDefaultDatabaseVariants, 0, kDefaultDatabaseSampling), options,
-      TerminalProgress("database"));
-  FinishProgress();
-  db.Save(path);
+  // Temporaries of a build that was killed (io/atomic_file.h).
+  io::RemoveStaleTempFiles(CacheDir());
+  recognition::EnsureCachedDatabase(
+      path,
+      [&] {
+        recognition::ModelDatabase db = recognition::BuildDatabase(
+            recognition::ProceduralModelSources(kDefaultDatabaseVariants, 0, kDefaultDatabaseSampling), options,
+            TerminalProgress("database"));
+        FinishProgress();
+        return db;
+      },
+      [&](const recognition::CachedDatabaseStatus& status) {
+        // A damaged cache is reported even with --quiet: it is not progress but something that went wrong.
+        if (!status.damage.empty()) {
+          std::fprintf(stderr, "objscan: the cached model database is damaged, rebuilding it: %s\n",
+                       status.damage.c_str());
+        } else if (verbose) {
+          std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n", path.c_str());
+        }
+      });
   return path;
 }
 
 namespace {
 
 // The run's objects reported under each variant of the report options, scored like the run.
-void WriteReportVariants(const std::string& path, const std::vector<eval::ReportVariant>& variants,
-                         const eval::RunEvaluator& evaluator, const scanning::RunRecord& record,
-                         scanning::Scanner* scanner) {
+std::string ReportVariantsJson(const std::vector<eval::ReportVariant>& variants, const eval::RunEvaluator& evaluator,
+                               const scanning::RunRecord& record, scanning::Scanner* scanner) {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
   scanning::RunRecord varied = record;
   for (const eval::ReportVariant& v : variants) {

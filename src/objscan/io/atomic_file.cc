@@ -1,9 +1,11 @@
 #include "objscan/io/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -13,9 +15,19 @@
 
 namespace objscan::io {
 
+namespace {
+
+constexpr char kTempInfix[] = ".tmp.";
+
+}  // namespace
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  // The process id keeps concurrent writers of the same target from sharing a temporary file.
-  temp_path_ = path_ + ".tmp" + std::to_string(static_cast<long>(::getpid()));
+  // Hidden, beside the target (the rename must stay within one file system); the process id keeps
+  // concurrent writers of the same target from sharing a temporary file and tells a later cleanup
+  // whether its writer still runs.
+  const std::filesystem::path target(path_);
+  const std::string name = "." + target.filename().string() + kTempInfix + std::to_string(static_cast<long>(::getpid()));
+  temp_path_ = (target.parent_path() / name).string();
 }
 
 AtomicFile::~AtomicFile() {
@@ -62,6 +74,39 @@ void WriteFileAtomically(const std::string& path, const std::string& bytes) {
     if (!out) throw InputError(path + ": write failed");
   }
   file.Commit();
+}
+
+bool IsAtomicTempName(const std::string& filename, long* pid) {
+  if (filename.size() < 2 || filename[0] != '.') return false;
+  const std::size_t infix = filename.rfind(kTempInfix);
+  if (infix == std::string::npos || infix < 2) return false;  // ".<at least one character>.tmp.<pid>"
+  const std::string digits = filename.substr(infix + sizeof(kTempInfix) - 1);
+  if (digits.empty() || digits.size() > 18) return false;
+  for (const char c : digits) {
+    if (c < '0' || c > '9') return false;
+  }
+  if (pid) *pid = std::stol(digits);
+  return true;
+}
+
+int RemoveStaleTempFiles(const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  int removed = 0;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    long pid = 0;
+    if (!IsAtomicTempName(it->path().filename().string(), &pid)) continue;
+    // A live writer (this process included) may still rename its file: keep it. kill(pid, 0) fails
+    // with ESRCH only when no such process exists (EPERM: it exists, owned by someone else).
+    // (Signal 0 only checks; a pid out of pid_t's range names no process.)
+    const bool writer_alive =
+        pid == static_cast<long>(::getpid()) ||
+        (pid > 0 && pid <= INT_MAX && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH));
+    if (writer_alive) continue;
+    std::error_code remove_ec;
+    if (fs::remove(it->path(), remove_ec)) ++removed;
+  }
+  return removed;
 }
 
 }  // namespace objscan::io

@@ -1,7 +1,9 @@
 #pragma once
 // Atomic file writes: data goes to a temporary file beside the target, which is synced to disk and
 // renamed over the target only once it is complete (then the folder is synced), so a failed write or
-// a crash never leaves a half-written file behind.
+// a crash never leaves a half-written file behind. The temporary file is hidden
+// (".<name>.tmp.<pid>"): a writer killed before the rename leaves no file that looks like an output,
+// and RemoveStaleTempFiles() clears such leftovers the next time the folder is written.
 #include <string>
 
 namespace objscan::io {
@@ -29,5 +31,13 @@ class AtomicFile {
 
 // Writes `bytes` to `path` atomically; throws InputError naming the path on failure.
 void WriteFileAtomically(const std::string& path, const std::string& bytes);
+
+// True when `filename` (no folder) is an AtomicFile temporary name; *pid (when given) is its writer.
+bool IsAtomicTempName(const std::string& filename, long* pid = nullptr);
+
+// Removes the AtomicFile temporaries in `folder` (not below it) whose writer process no longer
+// exists, i.e. leftovers of a killed writer; a live writer's file is kept. Returns how many were
+// removed. Best effort: never throws (a missing folder removes nothing).
+int RemoveStaleTempFiles(const std::string& folder);
 
 }  // namespace objscan::io

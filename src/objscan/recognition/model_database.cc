@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "objscan/common/error.h"
+#include "objscan/io/atomic_file.h"
 
 namespace objscan::recognition {
 
@@ -195,11 +196,11 @@ void ModelDatabase::Save(const std::string& path) const {
   }
   const std::vector<char>& payload = w.buffer();
 
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path tmp = target.string() + ".tmp";
+  // Atomically (io/atomic_file.h): a killed build or a full disk never leaves a partial database under
+  // the target name, and concurrent builders of the same cache file each write their own temporary.
+  io::AtomicFile file(path);
   {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    std::ofstream out(file.temp_path(), std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(path + ": cannot write model database");
     const std::uint32_t version = kFormatVersion;
     const std::uint64_t size = payload.size();
@@ -210,22 +211,17 @@ void ModelDatabase::Save(const std::string& path) const {
     out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
     out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
     out.flush();
-    if (!out) {
-      out.close();
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(path + ": failed writing model database");
-    }
+    if (!out) throw InputError(path + ": failed writing model database");
   }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path + ": cannot write model database (" + ec.message() + ")");
-  }
+  file.Commit();
 }
 
-ModelDatabase ModelDatabase::Load(const std::string& path) {
+namespace {
+
+// The whole file, its header checked and its payload verified against the checksum (so a truncated,
+// extended or bit-flipped file is rejected before anything is parsed). Returns the bytes; the payload
+// starts at kHeaderSize.
+std::vector<char> ReadVerifiedFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path + ": cannot open model database");
   const std::streamoff file_size = in.tellg();
@@ -241,15 +237,27 @@ ModelDatabase ModelDatabase::Load(const std::string& path) {
   std::memcpy(&version, bytes.data() + 8, 4);
   std::memcpy(&size, bytes.data() + 12, 8);
   std::memcpy(&checksum, bytes.data() + 20, 8);
-  if (version != kFormatVersion) {
+  if (version != ModelDatabase::kFormatVersion) {
     throw InputError(path + ": model database format version " + std::to_string(version) +
-                     ", this objscan reads version " + std::to_string(kFormatVersion) +
+                     ", this objscan reads version " + std::to_string(ModelDatabase::kFormatVersion) +
                      " (rebuild it with objscan db build)");
   }
   if (bytes.size() - kHeaderSize < size) throw InputError(path + ": truncated model database");
   if (bytes.size() - kHeaderSize > size) throw InputError(path + ": corrupt model database (trailing bytes)");
+  if (Checksum(bytes.data() + kHeaderSize, size) != checksum) {
+    throw InputError(path + ": corrupt model database (checksum mismatch)");
+  }
+  return bytes;
+}
+
+}  // namespace
+
+void ModelDatabase::Verify(const std::string& path) { ReadVerifiedFile(path); }
+
+ModelDatabase ModelDatabase::Load(const std::string& path) {
+  const std::vector<char> bytes = ReadVerifiedFile(path);
   const char* payload = bytes.data() + kHeaderSize;
-  if (Checksum(payload, size) != checksum) throw InputError(path + ": corrupt model database (checksum mismatch)");
+  const std::size_t size = bytes.size() - kHeaderSize;
 
   Reader r(payload, size, path);
   ModelDatabase db;

@@ -69,10 +69,15 @@ class ModelDatabase {
   ModelDatabase(ModelDatabase&&) = default;
   ModelDatabase& operator=(ModelDatabase&&) = default;
 
-  // Writes atomically (temporary file, then rename). Throws InputError naming the path on failure.
+  // Writes atomically (io/atomic_file.h: temporary file, fsync, rename, folder sync). The header
+  // carries the payload's size and checksum. Throws InputError naming the path on failure.
   void Save(const std::string& path) const;
   // Throws InputError naming the path for a missing, foreign, old, corrupt or truncated file.
   static ModelDatabase Load(const std::string& path);
+  // The checks of Load that need no parsing: magic, format version, size and checksum of the whole
+  // payload. Cheap next to Load (one pass over the bytes); throws the same InputError Load would
+  // for a truncated, extended or bit-flipped file.
+  static void Verify(const std::string& path);
 
   DatabaseSettings& mutable_settings() { return settings_; }
   const DatabaseSettings& settings() const { return settings_; }

@@ -32,7 +32,7 @@ class ModelDatabaseTest : public testing::ShapeDatabaseSuite<> {
     std::ofstream out(p, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   }
-  // Loading must throw InputError whose message names the file.
+  // Loading and verifying must both throw InputError whose message names the file.
   void ExpectRejected(const fs::path& p, const std::string& what) {
     try {
       ModelDatabase::Load(p.string());
@@ -40,6 +40,12 @@ class ModelDatabaseTest : public testing::ShapeDatabaseSuite<> {
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
       EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line: " << e.what();
+    }
+    try {
+      ModelDatabase::Verify(p.string());
+      ADD_FAILURE() << "verified a " << what << " database";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
     }
   }
 
@@ -111,8 +117,16 @@ TEST_F(ModelDatabaseTest, RejectsCorruptTruncatedForeignAndOldFiles) {
   const fs::path good = dir_ / "good.db";
   db_->Save(good.string());
   const std::vector<char> bytes = ReadBytes(good);
+  EXPECT_NO_THROW(ModelDatabase::Verify(good.string()));
 
   ExpectRejected(dir_ / "missing.db", "missing");
+  // One flipped bit anywhere (header or payload) is caught.
+  for (std::size_t at : {std::size_t{9}, std::size_t{14}, std::size_t{21}, std::size_t{40}, bytes.size() - 1}) {
+    std::vector<char> flipped = bytes;
+    flipped[at] ^= 0x01;
+    WriteBytes(dir_ / "flipped.db", flipped);
+    ExpectRejected(dir_ / "flipped.db", "bit-flipped at " + std::to_string(at));
+  }
 
   std::vector<char> corrupt = bytes;
   corrupt[corrupt.size() / 2] ^= 0x5A;
