@@ -138,6 +138,7 @@ struct RunEvaluator::Impl {
     options.max_range_m = config.sensor.max_range_m;
     options.max_incidence_deg = config.sensor.grazing_dropout_deg;
     options.own_surface_m = 0.5 * std::sqrt(3.0) * voxel_m;
+    options.threads = config.eval.threads;
     if (config.eval.coverage_robot_camera_heights) {
       options.min_camera_z_m = air.floor_top_m() + config.robot.min_camera_height_m;
       options.max_camera_z_m = air.floor_top_m() + config.robot.max_camera_height_m;

@@ -52,6 +52,9 @@ struct EvaluationOptions {
   // options and writes report_variants.json (eval/report_variants.h): "ablation" or a YAML file of
   // named variants; "" = none.
   std::string report_variants;
+  // Threads of the evaluation's ray casting (observability of V_S); 0 = hardware concurrency. The
+  // metrics do not depend on it.
+  int threads = 0;
 
   template <class V>
   void Visit(V& v) {
@@ -64,12 +67,14 @@ struct EvaluationOptions {
     v("coverage_robot_reach", coverage_robot_reach);
     v("recognized_min_objectness", recognized_min_objectness);
     v("report_variants", report_variants);
+    v("threads", threads);
   }
   void Validate() const {
     config::RequirePositive("eval.coverage_sigma", coverage_sigma);
     config::RequirePositive("eval.coverage_theta_t_rad", coverage_theta_t_rad);
     config::RequirePositive("eval.coverage_voxel_size_m", coverage_voxel_size_m);
     config::RequireInRange("eval.recognized_min_objectness", recognized_min_objectness, 0.0, 1.0);
+    config::Require(threads >= 0, "eval.threads", "must be >= 0 (0 = hardware concurrency)");
   }
 };
 
