@@ -234,6 +234,8 @@ RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, co
   const Json& t = j["timing_s"];
   r.timing_s = {Num(t, "total"), Num(t, "sense"), Num(t, "fuse"), Num(t, "segment"),
                 Num(t, "recognize"), Num(t, "nbo"), Num(t, "nbv"), Num(t, "navigate_sim")};
+  if (j.contains("peak_rss_mb") && j["peak_rss_mb"].is_number()) r.peak_rss_mb = j["peak_rss_mb"].get<double>();
+  if (j.contains("cpu_s") && j["cpu_s"].is_number()) r.cpu_s = j["cpu_s"].get<double>();
   return r;
 }
 
@@ -345,6 +347,16 @@ SceneCategoryStats Aggregate(const std::string& category, const std::vector<cons
     s.timing_s.navigate_sim += r->timing_s.navigate_sim;
     s.travel_m += r->travel_m;
     s.views += r->views;
+    if (r->cpu_s >= 0.0) {
+      ++s.cpu_runs;
+      s.cpu_s += r->cpu_s;
+      s.cpu_s_max = std::max(s.cpu_s_max, r->cpu_s);
+    }
+    if (r->peak_rss_mb >= 0.0) {
+      ++s.rss_runs;
+      s.peak_rss_mb += r->peak_rss_mb;
+      s.peak_rss_mb_max = std::max(s.peak_rss_mb_max, r->peak_rss_mb);
+    }
     if (!r->has_metrics) continue;
     ++with_metrics;
     s.objects_per_scene += r->ground_truth_objects;
@@ -371,6 +383,8 @@ SceneCategoryStats Aggregate(const std::string& category, const std::vector<cons
     s.travel_m /= n;
     s.views /= n;
   }
+  if (s.cpu_runs > 0) s.cpu_s /= s.cpu_runs;
+  if (s.rss_runs > 0) s.peak_rss_mb /= s.rss_runs;
   if (with_metrics > 0) {
     const double n = with_metrics;
     for (double* v : {&s.objects_per_scene, &s.recall, &s.precision, &s.recall_floor, &s.precision_floor,
@@ -610,7 +624,13 @@ Json StatsJson(const SceneCategoryStats& s) {
               {"travel_m", s.travel_m},
               {"views", s.views},
               {"nbo_count", s.nbo_count},
-              {"timing_s", TimingJson(s.timing_s)}};
+              {"timing_s", TimingJson(s.timing_s)},
+              {"resources", Json{{"cpu_runs", s.cpu_runs},
+                                 {"cpu_s", s.cpu_s},
+                                 {"cpu_s_max", s.cpu_s_max},
+                                 {"rss_runs", s.rss_runs},
+                                 {"peak_rss_mb", s.peak_rss_mb},
+                                 {"peak_rss_mb_max", s.peak_rss_mb_max}}}};
 }
 
 Json CurveJson(const Curve& c) { return Json{{"x", c.x}, {"y", c.y}}; }
@@ -857,6 +877,8 @@ std::string ReportJson(const Report& report) {
       row["coverage_rate"] = r.coverage_rate;
       row["coverage_quality"] = r.coverage_quality;
       row["compute_s"] = r.timing_s.total;
+      if (r.cpu_s >= 0.0) row["cpu_s"] = r.cpu_s;
+      if (r.peak_rss_mb >= 0.0) row["peak_rss_mb"] = r.peak_rss_mb;
       if (r.has_error_analysis) row["reported_objects"] = BreakdownJson(r.errors);
     }
     per_run.push_back(row);
@@ -940,6 +962,20 @@ std::string ReportMarkdown(const Report& report) {
        << Pct(s.precision) << " | " << Fix(s.rand_index, 3) << " | " << Pct(s.coverage_rate) << " | "
        << Pct(s.coverage_quality) << " | " << Fix(s.travel_m, 1) << " | " << Fix(s.views, 1) << " | "
        << Fix(s.nbo_count, 1) << " | " << Fix(s.timing_s.total, 1) << " |\n";
+  }
+
+  md << "\n## Resources per method (all scenes)\n\n";
+  md << "Per run of `objscan run` (one process each): CPU time is user + system over all threads (database "
+        "loading and evaluation included), compute the wall time of the method, peak RSS the most resident "
+        "memory the process held. Runs whose run.json predates these fields are not counted.\n\n";
+  md << "| Method | runs | CPU s mean | CPU s max | compute s mean | peak RSS MB mean | peak RSS MB max |\n";
+  md << "|---|---|---|---|---|---|---|\n";
+  for (const auto& m : report.methods) {
+    const SceneCategoryStats& s = report.by_method.at(m).back();
+    md << "| `" << m << "` | " << s.scenes << " | " << (s.cpu_runs ? Fix(s.cpu_s, 1) : "-") << " | "
+       << (s.cpu_runs ? Fix(s.cpu_s_max, 1) : "-") << " | " << Fix(s.timing_s.total, 1) << " | "
+       << (s.rss_runs ? Fix(s.peak_rss_mb, 0) : "-") << " | " << (s.rss_runs ? Fix(s.peak_rss_mb_max, 0) : "-")
+       << " |\n";
   }
 
   md << "\n## Table 2: object recognition per object category (`ours`, summed over scenes)\n\n";
@@ -1119,6 +1155,7 @@ std::vector<std::string> WriteReport(const Report& report, const std::string& ou
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw InputError(out_dir + ": cannot create the report folder: " + ec.message());
+  io::RemoveStaleTempFiles(out_dir);  // left by a report writer that was killed
   const fs::path dir(out_dir);
   std::vector<std::string> written;
   io::WriteFileAtomically((dir / "results.json").string(), ReportJson(report));

@@ -60,6 +60,9 @@ struct RunSummary {
   std::vector<CoveragePoint> coverage;
   std::vector<std::pair<int, double>> rand_index_per_view;  // (views seen, Rand Index) per analysis
   RunTiming timing_s;
+  // Resources of the run's process (run.json peak_rss_mb, cpu_s); negative when run.json lacks them
+  // (written before objscan recorded them).
+  double peak_rss_mb = -1.0, cpu_s = -1.0;
   // The reported labelled objects (the outputs of recall and precision: labelled, and complete or
   // with objectness >= the run's eval.recognized_min_objectness) by error class, and the confusion
   // matrix; when run.json lists the ground-truth instances (metrics.instances).
@@ -109,6 +112,11 @@ struct SceneCategoryStats {
   double rand_index = 0, rand_index_preseg = 0;
   double coverage_rate = 0, coverage_quality = 0, travel_m = 0, views = 0, nbo_count = 0;
   RunTiming timing_s;  // means
+  // Process resources over the complete runs that recorded them (each counted separately: older
+  // run.json files lack cpu_s). Means and maxima; 0 when no run recorded it.
+  int cpu_runs = 0, rss_runs = 0;
+  double cpu_s = 0, cpu_s_max = 0;
+  double peak_rss_mb = 0, peak_rss_mb_max = 0;
 };
 
 struct ObjectCategoryStats {

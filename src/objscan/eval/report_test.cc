@@ -60,6 +60,7 @@ struct Fixture {
   nlohmann::json per_category = {{"chair", {{"ground_truth", 3}, {"outputs", 5}, {"true_positives", 2}}},
                                  {"bed", {{"ground_truth", 1}, {"outputs", 3}, {"true_positives", 0}}}};
   double total_s = 10.0, navigate_s = 40.0;
+  double peak_rss_mb = -1.0, cpu_s = -1.0;  // written when >= 0 (older run.json files lack them)
 
   std::string Json() const {
     nlohmann::json j;
@@ -101,6 +102,8 @@ struct Fixture {
                     {"coverage_per_view", cov}};
     j["timing_s"] = {{"total", total_s}, {"sense", 1.0},   {"fuse", 1.0}, {"segment", 2.0}, {"recognize", 5.0},
                      {"nbo", 0.5},       {"nbv", 0.5},     {"navigate_sim", navigate_s}};
+    if (peak_rss_mb >= 0.0) j["peak_rss_mb"] = peak_rss_mb;
+    if (cpu_s >= 0.0) j["cpu_s"] = cpu_s;
     return j.dump(2);
   }
 };
@@ -195,6 +198,57 @@ TEST(ReportTest, MeansPerSceneCategoryAndSumsPerObjectCategory) {
   const std::string md = ReportMarkdown(report);
   EXPECT_NE(md.find("64.22%"), std::string::npos);
   EXPECT_NE(md.find("75.00%"), std::string::npos);
+}
+
+// Peak RSS and CPU time per method: means and maxima over the runs that recorded them; a run.json
+// without them (older objscan) counts for neither.
+TEST(ReportTest, ResourcesPerMethodFromRunJson) {
+  Fixture a, b, old, f;
+  a.cpu_s = 12.5;
+  a.peak_rss_mb = 400.0;
+  b.spec = "procedural:bedroom:2";
+  b.cpu_s = 7.5;
+  b.peak_rss_mb = 900.0;
+  old.spec = "procedural:office:1";  // no resources recorded
+  f.cpu_s = 3.0;
+  f.peak_rss_mb = 250.0;
+  const RunSummary parsed = ParseRunJson(a.Json(), "bed-1", "ours", "a");
+  EXPECT_DOUBLE_EQ(parsed.cpu_s, 12.5);
+  EXPECT_DOUBLE_EQ(parsed.peak_rss_mb, 400.0);
+  const RunSummary parsed_old = ParseRunJson(old.Json(), "off-1", "ours", "old");
+  EXPECT_LT(parsed_old.cpu_s, 0.0);
+  EXPECT_LT(parsed_old.peak_rss_mb, 0.0);
+  const Report report = BuildReport({parsed, ParseRunJson(b.Json(), "bed-2", "ours", "b"), parsed_old,
+                                     ParseRunJson(f.Json(), "bed-1", "frontier", "f")});
+  const SceneCategoryStats& ours = report.by_method.at("ours").back();
+  EXPECT_EQ(ours.category, "all");
+  EXPECT_EQ(ours.scenes, 3);
+  EXPECT_EQ(ours.cpu_runs, 2);
+  EXPECT_EQ(ours.rss_runs, 2);
+  EXPECT_DOUBLE_EQ(ours.cpu_s, 10.0);
+  EXPECT_DOUBLE_EQ(ours.cpu_s_max, 12.5);
+  EXPECT_DOUBLE_EQ(ours.peak_rss_mb, 650.0);
+  EXPECT_DOUBLE_EQ(ours.peak_rss_mb_max, 900.0);
+  const SceneCategoryStats& frontier = report.by_method.at("frontier").back();
+  EXPECT_DOUBLE_EQ(frontier.cpu_s, 3.0);
+  EXPECT_DOUBLE_EQ(frontier.peak_rss_mb_max, 250.0);
+
+  const std::string md = ReportMarkdown(report);
+  EXPECT_NE(md.find("| `ours` | 3 | 10.0 | 12.5 | 10.0 | 650 | 900 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `frontier` | 1 | 3.0 | 3.0 | 10.0 | 250 | 250 |"), std::string::npos) << md;
+  const nlohmann::json j = nlohmann::json::parse(ReportJson(report));
+  const nlohmann::json& all = j["by_method"]["ours"].back();
+  EXPECT_EQ(all["category"], "all");
+  EXPECT_DOUBLE_EQ(all["resources"]["cpu_s"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(all["resources"]["peak_rss_mb_max"].get<double>(), 900.0);
+  for (const auto& row : j["per_run"]) {
+    if (row["scene"] == "bed-2") {
+      EXPECT_DOUBLE_EQ(row["cpu_s"].get<double>(), 7.5);
+    }
+    if (row["scene"] == "off-1") {
+      EXPECT_FALSE(row.contains("cpu_s"));
+    }
+  }
 }
 
 // Run A: V_S of 100 voxels, a chair (40, all seen, matched), a cabinet (60, 50 seen, taken for a
