@@ -130,7 +130,7 @@ std::string ReportVariantsJson(const std::vector<eval::ReportVariant>& variants,
                    {"ground_truth_objects", m.ground_truth_objects},
                    {"labelled_objects", labelled}};
   }
-  io::WriteFileAtomically(path, out.dump(2) + "\n");
+  return out.dump(2) + "\n";
 }
 
 // Peak resident set size of this process so far (Linux reports ru_maxrss in KiB).
@@ -138,6 +138,15 @@ double PeakRssMb() {
   struct rusage usage {};
   if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
   return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// CPU time of this process so far, user + system, all threads (-1 when unknown). Beside the wall
+// time it shows how much of a run is parallel, and it is what a machine shared by several runs pays.
+double CpuSeconds() {
+  struct rusage usage {};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return -1.0;
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
 int RunScan(const RunArgs& args) {
@@ -177,18 +186,24 @@ int RunScan(const RunArgs& args) {
   outputs.metrics = &metrics;
   outputs.scene_spec = args.scene;
   outputs.database_path = db_path;
+  if (!variants.empty()) {
+    const std::string variants_json = ReportVariantsJson(variants, evaluator, record, &scanner);
+    outputs.write_more_files = [variants_json](const std::string& out_dir) {
+      io::WriteFileAtomically(out_dir + "/report_variants.json", variants_json);
+    };
+  }
+  // Measured before the files are written (run.json holds them; writing them costs little of either).
   outputs.peak_rss_mb = PeakRssMb();
+  outputs.cpu_s = CpuSeconds();
   eval::WriteRunOutputs(args.out, outputs);
-  scanner.WriteNavigationMap(args.out + "/navmap.png");
-  if (!variants.empty()) WriteReportVariants(args.out + "/report_variants.json", variants, evaluator, record, &scanner);
 
   std::printf(
       "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "
       "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f, "
-      "\"peak_rss_mb\": %.1f}\n",
+      "\"peak_rss_mb\": %.1f, \"cpu_s\": %.2f}\n",
       args.out.c_str(), scanning::TerminationName(record.terminated), record.views, record.objects.size(),
       metrics.recall, metrics.precision, metrics.coverage_rate, metrics.rand_index, record.travel_m,
-      record.timing_s.total, outputs.peak_rss_mb);
+      record.timing_s.total, outputs.peak_rss_mb, outputs.cpu_s);
   return 0;
 }
 

@@ -174,6 +174,7 @@ std::string RunJson(const RunOutputInputs& in) {
                        {"recognize", r.timing_s.recognize}, {"nbo", r.timing_s.nbo},
                        {"nbv", r.timing_s.nbv},             {"navigate_sim", r.timing_s.navigate_sim}};
   if (in.peak_rss_mb > 0.0) j["peak_rss_mb"] = std::round(in.peak_rss_mb * 10.0) / 10.0;
+  if (in.cpu_s >= 0.0) j["cpu_s"] = std::round(in.cpu_s * 100.0) / 100.0;
   return j.dump(2) + "\n";
 }
 
@@ -272,6 +273,11 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   fs::create_directories(out_dir, ec);
   if (ec) throw InputError(out_dir + ": cannot create output folder: " + ec.message());
   const fs::path dir(out_dir);
+  // run.json marks a finished run (objscan bench resumes on it): the old one goes before any file of
+  // this run replaces its neighbours.
+  io::RemoveStaleTempFiles(out_dir);
+  fs::remove(dir / "run.json", ec);
+  if (ec) throw InputError((dir / "run.json").string() + ": cannot replace: " + ec.message());
 
   // scene.ply: the reconstructed surface with object and category ids.
   const mapping::SurfaceMap& map = in.scanner->surface_map();
@@ -355,6 +361,8 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   }
   io::WriteFileAtomically((dir / "trajectory.csv").string(), csv.str());
   WriteRunTopView((dir / "topview.png").string(), in);
+  in.scanner->WriteNavigationMap((dir / "navmap.png").string());
+  if (in.write_more_files) in.write_more_files(out_dir);
   io::WriteFileAtomically((dir / "run.json").string(), RunJson(in));
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Writes the output folder of `objscan run` (DESIGN.md): run.json, scene.ply, models.ply,
-// trajectory.csv and topview.png; with ground truth also coverage.ply (the voxels of V_S coloured by
+// trajectory.csv, topview.png and navmap.png; with ground truth also coverage.ply (the voxels of V_S coloured by
 // covered / seen but not recognised / never seen). Each file is written atomically.
+#include <functional>
 #include <string>
 
 #include "objscan/eval/run_evaluation.h"
@@ -21,11 +22,18 @@ struct RunOutputInputs {
   std::string database_path;
   // Peak resident memory of the process (run.json `peak_rss_mb`); 0 = not measured.
   double peak_rss_mb = 0.0;
+  // CPU time of the process, user + system (run.json `cpu_s`); negative = not measured.
+  double cpu_s = -1.0;
+  // Further files of the caller (report_variants.json), written into the folder before run.json.
+  std::function<void(const std::string& out_dir)> write_more_files;
 };
 
 // JSON text of run.json.
 std::string RunJson(const RunOutputInputs& in);
-// Writes all files into `out_dir` (created when missing). Throws InputError naming the path.
+// Writes all files into `out_dir` (created when missing), each atomically, run.json last: a folder
+// holding a run.json holds every file of that run (an earlier run.json is removed first, so a run
+// killed while writing never leaves the old run.json beside new files; temporaries of a killed
+// writer are removed too). Throws InputError naming the path.
 void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in);
 // Draws the reconstruction from above: objects coloured by category, unrecognised surface grey,
 // robot path and view directions.
