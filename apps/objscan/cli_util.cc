@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "objscan/common/error.h"
@@ -29,6 +30,18 @@ ProgressCallback TerminalProgress(const std::string& label) {
 void FinishProgress() {
   if (g_bar_drawn) std::fprintf(stderr, "\n");
   g_bar_drawn = false;
+}
+
+std::uint64_t DatabaseMemoryLimitBytes(double max_database_memory_mb) {
+  if (max_database_memory_mb > 0.0) return static_cast<std::uint64_t>(max_database_memory_mb * 1024.0 * 1024.0);
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit) {
+    if (key == "MemAvailable:") return kib * 1024;
+  }
+  return 0;
 }
 
 PoseArg ParsePoseArg(const std::string& text, const std::string& option_name) {

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the subcommands: progress bar on a terminal, pose strings, JSON on stdout,
 // loading the effective configuration.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -21,5 +22,9 @@ PoseArg ParsePoseArg(const std::string& text, const std::string& option_name);
 
 // The built-in procedural model database: built on first use and cached (cmd_run.cc); returns its path.
 std::string DefaultDatabasePath(bool verbose);
+
+// The memory limit of a model database in bytes (ModelDatabase::Load): recognition.max_database_memory_mb,
+// or when that is 0 the memory the machine has available now (MemAvailable; 0 = no limit when unknown).
+std::uint64_t DatabaseMemoryLimitBytes(double max_database_memory_mb);
 
 }  // namespace objscan::app

@@ -148,7 +148,8 @@ int RunBench(const BenchArgs& a) {
   if (!model_path.empty()) check_sets.push_back("scene.model_path=" + model_path);
   const scanning::SystemConfig config = scanning::LoadSystemConfig("", check_sets);
   // A damaged --db fails here, in one line, not in every run.
-  if (!a.db.empty()) recognition::ModelDatabase::Verify(a.db);
+  const std::uint64_t database_memory = DatabaseMemoryLimitBytes(config.recognition.max_database_memory_mb);
+  if (!a.db.empty()) recognition::ModelDatabase::Verify(a.db, database_memory);
 
   const std::string out = fs::absolute(a.out).lexically_normal().string();
   const std::vector<eval::BenchJob> jobs = eval::ShardJobs(eval::MakeJobs(suite.scenes, methods, out), shard);
@@ -197,7 +198,7 @@ int RunBench(const BenchArgs& a) {
       database_of_run[job.run_dir] = job.method.database_without_parts ? no_parts : base;
       if (job.method.database_without_parts) {
         EnsureDatabase(no_parts, "the database without component and pair entries", [&] {
-          const recognition::ModelDatabase db = recognition::ModelDatabase::Load(base);
+          const recognition::ModelDatabase db = recognition::ModelDatabase::Load(base, database_memory);
           return eval::DatabaseWithoutParts(db);
         });
       }

@@ -26,6 +26,7 @@
 #include "objscan/recognition/database_cache.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/scanning/scanner.h"
+#include "objscan/scanning/scene_limits.h"
 #include "objscan/scanning/system_config.h"
 
 namespace objscan::app {
@@ -161,8 +162,10 @@ int RunScan(const RunArgs& args) {
   // Check every input before writing anything.
   const std::vector<eval::ReportVariant> variants = eval::LoadReportVariants(config.eval.report_variants, config.report);
   const world::Scene scene = io::LoadScene(args.scene, config.scene);
+  scanning::CheckSceneLimits(scene, config, args.scene);
   const std::string db_path = args.db.empty() ? DefaultDatabasePath(!args.quiet) : args.db;
-  const recognition::ModelDatabase database = recognition::ModelDatabase::Load(db_path);
+  const recognition::ModelDatabase database = recognition::ModelDatabase::Load(
+      db_path, DatabaseMemoryLimitBytes(config.recognition.max_database_memory_mb));
   if (database.models().empty()) throw InputError(db_path + ": the model database is empty");
   std::set<world::Category> known;
   for (const auto& m : database.models()) known.insert(m.category);

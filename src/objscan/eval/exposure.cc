@@ -8,6 +8,7 @@
 #include <string>
 
 #include "objscan/common/error.h"
+#include "objscan/common/limits.h"
 
 namespace objscan::eval {
 namespace {
@@ -49,8 +50,7 @@ RoomAir::RoomAir(const world::Scene& scene, double voxel_m, const Eigen::Vector3
   const Eigen::Vector3i max_key = KeyOf(bounds.max_m) + Eigen::Vector3i::Constant(2);
   size_ = max_key - min_key_ + Eigen::Vector3i::Ones();
   const std::size_t cells = static_cast<std::size_t>(size_.x()) * size_.y() * size_.z();
-  constexpr std::size_t kMaxCells = std::size_t{1} << 30;
-  if (cells > kMaxCells) throw InputError("ExposedVoxels: the scene is too large for a " + std::to_string(voxel_m) + " m grid");
+  if (cells > limits::kMaxEvaluationGridCells) throw InputError("ExposedVoxels: the scene is too large for a " + std::to_string(voxel_m) + " m grid");
 
   std::vector<std::uint8_t> state(cells, 0);
   const double step = 0.4 * voxel_m;

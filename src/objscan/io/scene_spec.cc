@@ -73,6 +73,8 @@ std::string LowerExtension(const std::string& path) {
 
 void SceneLoadOptions::Validate() const {
   if (category_map.empty()) throw ConfigError("scene.category_map: must name a category map file");
+  config::RequirePositive("scene.max_extent_m", max_extent_m);
+  config::Require(max_triangles >= 1, "scene.max_triangles", "must be at least 1");
 }
 
 world::Scene LoadScene(const std::string& spec, const SceneLoadOptions& options) {

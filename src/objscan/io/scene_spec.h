@@ -20,12 +20,20 @@ struct SceneLoadOptions {
   // exists, else relative to the project's config/. The default knows SUNCG/OASC, AWS RoboMaker and
   // ScanNet/NYU40 names.
   std::string category_map = "categories/default.yaml";
+  // Limits `objscan run` checks before it starts (scanning/scene_limits.h): the largest side of the
+  // scene's bounds (the map grids grow with it; the AWS small house spans 20 m) and its triangles
+  // (the ray caster holds them all; a ScanNet scan has a few hundred thousand). A larger scene fails
+  // with one line naming the key instead of running out of memory.
+  double max_extent_m = 100.0;
+  std::int64_t max_triangles = 20'000'000;
 
   template <class V>
   void Visit(V& v) {
     v("model_path", model_path);
     v("allow_missing", allow_missing);
     v("category_map", category_map);
+    v("max_extent_m", max_extent_m);
+    v("max_triangles", max_triangles);
   }
   void Validate() const;
 };

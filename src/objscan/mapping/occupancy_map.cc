@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "objscan/common/limits.h"
+
 namespace objscan::mapping {
 namespace {
 
@@ -215,8 +217,7 @@ OccupancySnapshot OccupancyMap::Snapshot(const geometry::Aabb3& box) const {
   // Voxels aligned to multiples of the resolution, as OctoMap's.
   const Eigen::Vector3d lo = (box.min_m / res).array().floor() * res;
   const Eigen::Vector3i n = ((box.max_m - lo) / res).array().ceil().cast<int>().max(1);
-  constexpr std::size_t kMaxCells = std::size_t{1} << 28;
-  if (static_cast<std::size_t>(n.x()) * n.y() * n.z() > kMaxCells) {
+  if (static_cast<std::size_t>(n.x()) * n.y() * n.z() > limits::kMaxOccupancySnapshotCells) {
     throw InputError("OccupancyMap::Snapshot: box too large for a dense grid");
   }
   snap.origin_world = lo;

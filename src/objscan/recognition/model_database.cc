@@ -221,11 +221,18 @@ namespace {
 // The whole file, its header checked and its payload verified against the checksum (so a truncated,
 // extended or bit-flipped file is rejected before anything is parsed). Returns the bytes; the payload
 // starts at kHeaderSize.
-std::vector<char> ReadVerifiedFile(const std::string& path) {
+std::vector<char> ReadVerifiedFile(const std::string& path, std::uint64_t max_memory_bytes) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path + ": cannot open model database");
   const std::streamoff file_size = in.tellg();
   if (file_size < 0) throw InputError(path + ": cannot read model database");
+  const std::uint64_t need = static_cast<std::uint64_t>(file_size) * ModelDatabase::kMemoryPerFileByte;
+  if (max_memory_bytes > 0 && need > max_memory_bytes) {
+    const auto mb = [](std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); };
+    throw InputError(path + ": the model database needs about " + mb(need) + " MB of memory once loaded, more than the " +
+                     "limit of " + mb(max_memory_bytes) +
+                     " MB (recognition.max_database_memory_mb; 0 means the memory available)");
+  }
   std::vector<char> bytes(static_cast<std::size_t>(file_size));
   in.seekg(0);
   if (!in.read(bytes.data(), file_size)) throw InputError(path + ": cannot read model database");
@@ -252,10 +259,12 @@ std::vector<char> ReadVerifiedFile(const std::string& path) {
 
 }  // namespace
 
-void ModelDatabase::Verify(const std::string& path) { ReadVerifiedFile(path); }
+void ModelDatabase::Verify(const std::string& path, std::uint64_t max_memory_bytes) {
+  ReadVerifiedFile(path, max_memory_bytes);
+}
 
-ModelDatabase ModelDatabase::Load(const std::string& path) {
-  const std::vector<char> bytes = ReadVerifiedFile(path);
+ModelDatabase ModelDatabase::Load(const std::string& path, std::uint64_t max_memory_bytes) {
+  const std::vector<char> bytes = ReadVerifiedFile(path, max_memory_bytes);
   const char* payload = bytes.data() + kHeaderSize;
   const std::size_t size = bytes.size() - kHeaderSize;
 

@@ -72,12 +72,18 @@ class ModelDatabase {
   // Writes atomically (io/atomic_file.h: temporary file, fsync, rename, folder sync). The header
   // carries the payload's size and checksum. Throws InputError naming the path on failure.
   void Save(const std::string& path) const;
-  // Throws InputError naming the path for a missing, foreign, old, corrupt or truncated file.
-  static ModelDatabase Load(const std::string& path);
+  // Throws InputError naming the path for a missing, foreign, old, corrupt or truncated file, and,
+  // when max_memory_bytes > 0, for a database that would take more memory than that once loaded
+  // (kMemoryPerFileByte times its file), before reading it (recognition.max_database_memory_mb).
+  static ModelDatabase Load(const std::string& path, std::uint64_t max_memory_bytes = 0);
   // The checks of Load that need no parsing: magic, format version, size and checksum of the whole
-  // payload. Cheap next to Load (one pass over the bytes); throws the same InputError Load would
-  // for a truncated, extended or bit-flipped file.
-  static void Verify(const std::string& path);
+  // payload (and the memory limit). Cheap next to Load (one pass over the bytes); throws the same
+  // InputError Load would for a truncated, extended or bit-flipped file.
+  static void Verify(const std::string& path, std::uint64_t max_memory_bytes = 0);
+  // Memory of a loaded database per byte of its file, about: the points of components and pairs are
+  // stored as indices and expanded on load, and the indices and kd-trees are built (a 45 MB file
+  // took 180 MB).
+  static constexpr std::uint64_t kMemoryPerFileByte = 4;
 
   DatabaseSettings& mutable_settings() { return settings_; }
   const DatabaseSettings& settings() const { return settings_; }

@@ -157,6 +157,36 @@ TEST_F(ModelDatabaseTest, RejectsCorruptTruncatedForeignAndOldFiles) {
   ExpectRejected(dir_ / "trailing.db", "trailing");
 }
 
+TEST_F(ModelDatabaseTest, DatabaseLargerThanTheMemoryLimitIsRejectedBeforeItIsRead) {
+  const fs::path good = dir_ / "good.db";
+  db_->Save(good.string());
+  const std::uint64_t need = fs::file_size(good) * ModelDatabase::kMemoryPerFileByte;
+  EXPECT_NO_THROW(ModelDatabase::Load(good.string(), need));
+  for (const bool verify : {false, true}) {
+    try {
+      if (verify) {
+        ModelDatabase::Verify(good.string(), need - 1);
+      } else {
+        ModelDatabase::Load(good.string(), need - 1);
+      }
+      ADD_FAILURE() << "a database over the memory limit was accepted";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(good.string() + ": the model database needs about", 0), 0u) << message;
+      EXPECT_NE(message.find("recognition.max_database_memory_mb"), std::string::npos) << message;
+    }
+  }
+  // The limit is checked from the file size alone: a file that is not a database is refused for its size.
+  std::vector<char> junk(4096, 'x');
+  WriteBytes(dir_ / "junk.db", junk);
+  try {
+    ModelDatabase::Load((dir_ / "junk.db").string(), 1024);
+    ADD_FAILURE() << "loaded junk";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_database_memory_mb"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(ModelDatabaseTest, SaveFailureLeavesNoFile) {
   const fs::path path = dir_ / "no_such_dir" / "x.db";
   EXPECT_THROW(db_->Save(path.string()), InputError);

@@ -15,6 +15,7 @@ namespace objscan::recognition {
 
 void RecognitionOptions::Validate() const {
   config::Require(num_similar_models >= 1, "recognition.num_similar_models", "must be at least 1");
+  config::RequireNonNegative("recognition.max_database_memory_mb", max_database_memory_mb);
   config::Require(shortlist_size >= num_similar_models, "recognition.shortlist_size",
                   "must be >= num_similar_models");
   config::RequireNonNegative("recognition.bow_rank_weight", bow_rank_weight);

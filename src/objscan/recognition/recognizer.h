@@ -77,6 +77,10 @@ struct RecognitionOptions {
   // categories without support heights keep their score. 0 = off (the paper).
   double support_height_tolerance_m = 0.0;
   AlignmentOptions alignment;
+  // The memory a model database may take once loaded (about ModelDatabase::kMemoryPerFileByte times
+  // its file); a larger one fails to load with one line naming this key instead of running out of
+  // memory. 0 = the memory the machine has available when the run starts.
+  double max_database_memory_mb = 0.0;
 
   template <class V>
   void Visit(V& v) {
@@ -98,6 +102,7 @@ struct RecognitionOptions {
     v("floor_contact_m", floor_contact_m);
     v("support_height_tolerance_m", support_height_tolerance_m);
     v("alignment", alignment);
+    v("max_database_memory_mb", max_database_memory_mb);
   }
   void Validate() const;
 };

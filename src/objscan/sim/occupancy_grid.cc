@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "objscan/common/error.h"
+#include "objscan/common/limits.h"
 
 namespace objscan::sim {
 
@@ -17,7 +18,7 @@ OccupancyGrid2D OccupancyGrid2D::Covering(const Eigen::Vector2d& min_xy, const E
   grid.origin_m = min_xy;
   grid.width = std::max(1, static_cast<int>(std::ceil((max_xy.x() - min_xy.x()) / cell_size_m)));
   grid.height = std::max(1, static_cast<int>(std::ceil((max_xy.y() - min_xy.y()) / cell_size_m)));
-  if (static_cast<double>(grid.width) * grid.height > 64.0e6) {
+  if (static_cast<double>(grid.width) * grid.height > static_cast<double>(limits::kMaxGrid2dCells)) {
     throw InputError("occupancy grid: extent too large for cell size " + std::to_string(cell_size_m) + " m");
   }
   grid.cells.assign(static_cast<std::size_t>(grid.width) * grid.height, state);
