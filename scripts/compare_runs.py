@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares two run.json files apart from timings, the effective config and the per-object
+"""Compares two run.json files apart from timings and resources (peak_rss_mb, cpu_s), the effective config and the per-object
 provenance of the report rules (label_changes, and the per-rule fields run.json had before it), e.g.
 to check that a change without behaviour change leaves runs as they were.
 
@@ -8,7 +8,7 @@ import json, sys
 PROV = {"graph_cut_category", "size_rejected_category", "small_rejected_category",
         "wall_opening_replaced_category", "completion_rejected_model", "label_changes"}
 def clean(j):
-    j.pop("timing_s", None); j.pop("config", None)
+    j.pop("timing_s", None); j.pop("config", None); j.pop("peak_rss_mb", None); j.pop("cpu_s", None)
     for s in j.get("steps", []): s.pop("timing_ms", None)
     for o in j.get("objects", []):
         for k in PROV: o.pop(k, None)

@@ -8,6 +8,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +17,8 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -95,18 +98,41 @@ struct Kill {
   std::function<bool()> trigger;
 };
 
-std::function<bool()> FileAppears(const fs::path& path) {
-  return [path] { return fs::exists(path); };
+// The first call of a trigger is right after the start, long before the program writes anything: it
+// notes what is there, so files left by earlier trials do not count.
+
+// `path` is written anew (a new file renamed over it: its inode changes).
+std::function<bool()> FileWritten(const fs::path& path) {
+  auto before = std::make_shared<std::optional<ino_t>>();
+  auto first = std::make_shared<bool>(true);
+  return [path, before, first] {
+    struct stat st {};
+    const bool exists = ::stat(path.c_str(), &st) == 0;
+    if (*first) {
+      *first = false;
+      if (exists) *before = st.st_ino;
+      return false;
+    }
+    return exists && (!before->has_value() || **before != st.st_ino);
+  };
 }
 
-// An AtomicFile temporary (of `target` when given) appears in `folder`: an output is being written.
+// A new AtomicFile temporary (of `target` when given) appears in `folder`: an output is being written.
 std::function<bool()> TemporaryAppears(const fs::path& folder, const std::string& target = "") {
-  return [folder, target] {
+  auto before = std::make_shared<std::set<std::string>>();
+  auto first = std::make_shared<bool>(true);
+  return [folder, target, before, first] {
     std::error_code ec;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
       const std::string name = it->path().filename().string();
-      if (objscan::io::IsAtomicTempName(name) && name.rfind("." + target, 0) == 0) return true;
+      if (!objscan::io::IsAtomicTempName(name) || name.rfind("." + target, 0) != 0) continue;
+      if (*first) {
+        before->insert(name);
+      } else if (!before->count(name)) {
+        return true;
+      }
     }
+    *first = false;
     return false;
   };
 }
@@ -258,7 +284,7 @@ TEST_F(CrashSafetyTest, KilledRunLeavesOnlyCompleteFiles) {
   std::vector<Kill> kills;
   for (int k = 0; k < 2; ++k) kills.push_back({moment(rng), nullptr});
   kills.push_back({0.0, TemporaryAppears(out)});
-  for (const char* file : {"scene.ply", "topview.png"}) kills.push_back({jitter(rng), FileAppears(out / file)});
+  for (const char* file : {"scene.ply", "topview.png"}) kills.push_back({jitter(rng), FileWritten(out / file)});
   kills.push_back({0.0, TemporaryAppears(out)});
   int killed = 0, killed_while_writing = 0, temporaries = 0;
   for (std::size_t t = 0; t < kills.size(); ++t) {

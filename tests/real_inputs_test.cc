@@ -54,6 +54,7 @@ TEST(RealInputsTest, ScanNetScanRunsEndToEndWithMetrics) {
   EXPECT_GE(j["metrics"]["coverage_visible_rate"].get<double>(), 0.3);
   EXPECT_GT(j["metrics"]["views"].get<int>(), 0);
   EXPECT_GT(j["peak_rss_mb"].get<double>(), 1.0);
+  EXPECT_GT(j["cpu_s"].get<double>(), 0.0);
   // The robot started and stayed on the scan's floor (inside the 4 m x 3 m room).
   for (const auto& step : j["steps"]) {
     const double x = step["pose"]["xyz"][0], y = step["pose"]["xyz"][1];

@@ -24,10 +24,12 @@ Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand
 
 nlohmann::json ReadJson(const fs::path& path) { return nlohmann::json::parse(objscan::testing::ReadFile(path)); }
 
-// run.json without what depends on the machine's speed (and memory use, which varies with threads).
+// run.json without what depends on the machine's speed (and memory use and CPU time, which vary with
+// threads and load).
 nlohmann::json WithoutTimings(nlohmann::json j) {
   j.erase("timing_s");
   j.erase("peak_rss_mb");
+  j.erase("cpu_s");
   for (auto& step : j["steps"]) step.erase("timing_ms");
   return j;
 }
