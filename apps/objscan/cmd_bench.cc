@@ -147,8 +147,8 @@ int RunBench(const BenchArgs& a) {
   std::vector<std::string> check_sets = run_sets;
   if (!model_path.empty()) check_sets.push_back("scene.model_path=" + model_path);
   const scanning::SystemConfig config = scanning::LoadSystemConfig("", check_sets);
-  // A damaged --db fails here, in one line, not in every run.
   const std::uint64_t database_memory = DatabaseMemoryLimitBytes(config.recognition.max_database_memory_mb);
+  // A damaged or too large --db fails here, in one line, not in every run.
   if (!a.db.empty()) recognition::ModelDatabase::Verify(a.db, database_memory);
 
   const std::string out = fs::absolute(a.out).lexically_normal().string();
@@ -194,15 +194,14 @@ int RunBench(const BenchArgs& a) {
   } else if (!pending.empty()) {
     const std::string base = a.db.empty() ? DefaultDatabasePath(true) : a.db;
     const std::string no_parts = (db_dir / "no-parts.db").string();
-    for (const auto& job : pending) {
-      database_of_run[job.run_dir] = job.method.database_without_parts ? no_parts : base;
-      if (job.method.database_without_parts) {
-        EnsureDatabase(no_parts, "the database without component and pair entries", [&] {
-          const recognition::ModelDatabase db = recognition::ModelDatabase::Load(base, database_memory);
-          return eval::DatabaseWithoutParts(db);
-        });
-      }
+    // Checked (and built) once, not once per run: verifying reads the whole file.
+    if (std::any_of(pending.begin(), pending.end(), [](const eval::BenchJob& job) { return job.method.database_without_parts; })) {
+      EnsureDatabase(no_parts, "the database without component and pair entries", [&] {
+        const recognition::ModelDatabase db = recognition::ModelDatabase::Load(base, database_memory);
+        return eval::DatabaseWithoutParts(db);
+      });
     }
+    for (const auto& job : pending) database_of_run[job.run_dir] = job.method.database_without_parts ? no_parts : base;
   }
 
   // The runs.
