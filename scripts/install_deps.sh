@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libembree-dev libpcl-dev liboctomap-dev libboost-graph-dev
   libassimp-dev libtinyxml2-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-dev  # the libFuzzer targets (scripts/fuzz.sh): clang with libFuzzer's runtime
 )
 if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then
   packages+=(libopen3d-dev)

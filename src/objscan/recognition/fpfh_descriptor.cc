@@ -16,6 +16,18 @@
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/recognition/keypoints.h"
 
+// PCL objects made here are allocated partly inside libpcl_* and freed here, or the other way round,
+// through Eigen's aligned allocator: both sides must pick the same one. Debian's PCL is built for
+// baseline x86-64 (no AVX in libpcl_features: 16-byte Eigen alignment), so its Eigen allocates with
+// plain malloc. So must ours: -march=native (AVX, 32 bytes) would switch Eigen to its
+// handmade_aligned_malloc, and so does gcc's -fsanitize=address unless EIGEN_MALLOC_ALREADY_ALIGNED=1
+// is defined (CMakeLists.txt does for OBJSCAN_SANITIZE); freeing PCL's blocks with
+// handmade_aligned_free corrupts the heap (ASan's heap-buffer-overflow in MatchesPclFpfhEstimation).
+static_assert(EIGEN_DEFAULT_ALIGN_BYTES == 16 && EIGEN_MALLOC_ALREADY_ALIGNED == 1,
+              "objscan must use the Eigen allocator Debian's PCL uses (16-byte alignment, malloc): "
+              "build without -march=native / AVX flags (and, with gcc's -fsanitize=address, with "
+              "EIGEN_MALLOC_ALREADY_ALIGNED=1)");
+
 namespace objscan::recognition {
 
 void DescriptorOptions::Validate() const {

@@ -96,6 +96,8 @@ class Reader {
   }
   template <class T>
   void Array(T* out, std::size_t count, const char* what) {
+    // An empty array's out is an empty vector's data(), which may be null: no memcpy (UB on null).
+    if (count == 0) return;
     Need(count * sizeof(T), what);
     std::memcpy(out, p_, count * sizeof(T));
     p_ += count * sizeof(T);
@@ -265,9 +267,10 @@ void ModelDatabase::Verify(const std::string& path, std::uint64_t max_memory_byt
 
 ModelDatabase ModelDatabase::Load(const std::string& path, std::uint64_t max_memory_bytes) {
   const std::vector<char> bytes = ReadVerifiedFile(path, max_memory_bytes);
-  const char* payload = bytes.data() + kHeaderSize;
-  const std::size_t size = bytes.size() - kHeaderSize;
+  return FromPayload(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize, path);
+}
 
+ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, const std::string& path) {
   Reader r(payload, size, path);
   ModelDatabase db;
   DatabaseSettings& s = db.settings_;

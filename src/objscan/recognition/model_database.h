@@ -76,6 +76,9 @@ class ModelDatabase {
   // when max_memory_bytes > 0, for a database that would take more memory than that once loaded
   // (kMemoryPerFileByte times its file), before reading it (recognition.max_database_memory_mb).
   static ModelDatabase Load(const std::string& path, std::uint64_t max_memory_bytes = 0);
+  // The part of Load after the header's checks: parses a payload (the file's bytes after the header)
+  // already in memory; errors name `path`. What the loader fuzzer drives (fuzz/fuzz_input.h).
+  static ModelDatabase FromPayload(const char* payload, std::size_t size, const std::string& path);
   // The checks of Load that need no parsing: magic, format version, size and checksum of the whole
   // payload (and the memory limit). Cheap next to Load (one pass over the bytes); throws the same
   // InputError Load would for a truncated, extended or bit-flipped file.
