@@ -9,6 +9,8 @@ packages=(
   libeigen3-dev libembree-dev libpcl-dev liboctomap-dev libboost-graph-dev
   libassimp-dev libtinyxml2-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # objscan view bundles three.js into view.html; its test screenshots the page in headless Chromium.
+  libjs-three chromium
 )
 if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then
   packages+=(libopen3d-dev)
