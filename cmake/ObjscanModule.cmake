@@ -2,6 +2,8 @@
 # Builds the static library objscan_<name> from every .cc below the module folder except *_test.cc,
 # and, when tests are on, the test program objscan_<name>_test from the *_test.cc files (if any).
 # Each module can be built and tested alone: `cmake --build build --target objscan_sim_test`.
+# Modules are recorded (global properties OBJSCAN_MODULE_LIBRARIES, OBJSCAN_MODULE_PRIVATE_DEPS) for
+# the installed shared library.
 function(objscan_module)
   cmake_parse_arguments(M "" "NAME" "DEPS;PRIVATE_DEPS;TEST_DEPS" ${ARGN})
   file(GLOB_RECURSE all_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
@@ -19,6 +21,13 @@ function(objscan_module)
     add_library(${lib} STATIC ${lib_sources})
     target_include_directories(${lib} PUBLIC ${PROJECT_SOURCE_DIR}/src)
     target_link_libraries(${lib} PUBLIC ${M_DEPS} PRIVATE ${M_PRIVATE_DEPS} objscan_warnings)
+    # The modules' objects also make up the shared library objscan::objscan (cmake/ObjscanLibrary.cmake):
+    # position independent, and without semantic interposition so calls inside objscan still inline
+    # as in an executable.
+    set_target_properties(${lib} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    target_compile_options(${lib} PRIVATE -fno-semantic-interposition)
+    set_property(GLOBAL APPEND PROPERTY OBJSCAN_MODULE_LIBRARIES ${lib})
+    set_property(GLOBAL APPEND PROPERTY OBJSCAN_MODULE_PRIVATE_DEPS ${M_PRIVATE_DEPS})
   else()
     add_library(${lib} INTERFACE)
     target_include_directories(${lib} INTERFACE ${PROJECT_SOURCE_DIR}/src)

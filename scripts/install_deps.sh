@@ -9,7 +9,12 @@ packages=(
   libeigen3-dev libembree-dev libpcl-dev liboctomap-dev libboost-graph-dev
   libassimp-dev libtinyxml2-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  clang libclang-rt-dev  # the libFuzzer targets (scripts/fuzz.sh): clang with libFuzzer's runtime
+  # objscan view bundles three.js into view.html; its test screenshots the page in headless Chromium.
+  libjs-three chromium
+  # Sanitizer pass and libFuzzer targets (scripts/test.sh --sanitize, scripts/fuzz.sh): clang, and
+  # compiler-rt, which on Debian 12 holds the ASan/UBSan runtimes and libclang_rt.fuzzer used by
+  # -fsanitize=fuzzer (libfuzzer-14-dev only adds a standalone libFuzzer.a, not needed).
+  clang libclang-rt-dev
 )
 if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then
   packages+=(libopen3d-dev)

@@ -4,12 +4,16 @@
 #include "run_command.h"
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "objscan/io/ply.h"
+#include "objscan/world/category.h"
 #include "shared_data.h"
 
 namespace {
@@ -56,7 +60,27 @@ TEST(CliTest, SceneInfoOfAProceduralRoomIsJson) {
   EXPECT_LE(furniture, 20);
   EXPECT_TRUE(j["missing_meshes"].empty());
   EXPECT_GT(fs::file_size(dir / "top.png"), 1000u);
-  EXPECT_GT(fs::file_size(dir / "scene.ply"), 1000u);
+  // The export: coloured by category, `label` = category_id and `instance` = instance_id, and each
+  // object's vertices carry the category --info gives it.
+  const objscan::io::PlyData ply = objscan::io::ReadPly((dir / "scene.ply").string());
+  ASSERT_EQ(ply.int_properties.size(), 4u);
+  EXPECT_EQ(ply.int_properties[0].first, "instance_id");
+  EXPECT_EQ(ply.int_properties[1].first, "category_id");
+  EXPECT_EQ(ply.int_properties[2].first, "label");
+  EXPECT_EQ(ply.int_properties[3].first, "instance");
+  EXPECT_EQ(ply.int_properties[2].second, ply.int_properties[1].second);
+  EXPECT_EQ(ply.int_properties[3].second, ply.int_properties[0].second);
+  std::map<int, std::string> category_of_instance;
+  for (const auto& o : j["objects"]) category_of_instance[o["id"].get<int>()] = o["category"].get<std::string>();
+  ASSERT_EQ(ply.colors.size(), ply.points.size());
+  for (std::size_t i = 0; i < ply.points.size(); ++i) {
+    const int label = ply.int_properties[2].second[i];
+    ASSERT_EQ(objscan::world::CategoryName(static_cast<objscan::world::Category>(label)),
+              category_of_instance.at(ply.int_properties[3].second[i])) << "vertex " << i;
+    const auto rgb = objscan::world::LabelColor(label);
+    ASSERT_EQ(ply.colors[i], (std::array<std::uint8_t, 3>{rgb[0], rgb[1], rgb[2]})) << "vertex " << i;
+  }
+  EXPECT_NE(std::find(ply.comments.begin(), ply.comments.end(), "category 1 bed 255 127 14"), ply.comments.end());
   fs::remove_all(dir);
 }
 

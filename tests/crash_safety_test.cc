@@ -43,7 +43,8 @@ using objscan::testing::ReadFile;
 
 // The files of a finished run folder besides run.json (run_output.h; procedural rooms have ground
 // truth, hence coverage.ply).
-const char* const kRunFiles[] = {"scene.ply", "models.ply", "coverage.ply", "trajectory.csv", "topview.png", "navmap.png"};
+const char* const kRunFiles[] = {"scene.ply",       "models.ply",  "coverage.ply", "trajectory.csv",
+                                 "trajectory.tum",  "categories.json", "topview.png",  "navmap.png"};
 
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
@@ -219,6 +220,17 @@ void ExpectOnlyCompleteFiles(const fs::path& root, const std::string& when, int*
       std::getline(lines, line);
       const auto fields = std::count(line.begin(), line.end(), ',');
       while (std::getline(lines, line)) EXPECT_EQ(std::count(line.begin(), line.end(), ','), fields) << line;
+    } else if (ext == ".tum") {
+      ASSERT_TRUE(!text.empty() && text.back() == '\n');
+      // '#' comments, then "timestamp tx ty tz qx qy qz qw" rows with unit quaternions.
+      std::istringstream lines(text);
+      for (std::string line; std::getline(lines, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream row(line);
+        double v[8];
+        for (double& x : v) ASSERT_TRUE(static_cast<bool>(row >> x)) << line;
+        EXPECT_NEAR(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7], 1.0, 1e-6) << line;
+      }
     } else if (ext == ".db") {
       EXPECT_NO_THROW(objscan::recognition::ModelDatabase::Verify(p.string()));
     } else {

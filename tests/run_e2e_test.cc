@@ -7,12 +7,18 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "objscan/eval/report.h"
+#include "objscan/geometry/pose.h"
 #include "objscan/io/ply.h"
+#include "objscan/world/category.h"
 
 namespace {
 
@@ -56,7 +62,8 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
   const Result b = RunObjscan(common + (dir / "b").string());
   ASSERT_EQ(b.exit_code, 0) << b.err;
 
-  for (const char* file : {"run.json", "scene.ply", "models.ply", "trajectory.csv", "topview.png", "coverage.ply"}) {
+  for (const char* file : {"run.json", "scene.ply", "models.ply", "trajectory.csv", "trajectory.tum", "categories.json",
+                           "topview.png", "coverage.ply"}) {
     EXPECT_TRUE(fs::exists(dir / "a" / file)) << file;
   }
   const nlohmann::json run = ReadJson(dir / "a" / "run.json");
@@ -132,6 +139,165 @@ TEST(RunE2eTest, ShortScanWritesEveryOutputAndTheSameSeedGivesTheSameRunJson) {
   for (const auto& p : coverage.points) default_vs.push_back({p.x(), p.y(), p.z()});
   EXPECT_GT(all.points.size(), kept.size());
   EXPECT_EQ(kept, default_vs);
+  fs::remove_all(dir);
+}
+
+const std::vector<std::int32_t>* IntProperty(const objscan::io::PlyData& ply, const std::string& name) {
+  for (const auto& [n, values] : ply.int_properties) {
+    if (n == name) return &values;
+  }
+  return nullptr;
+}
+
+// The lines of a text file that are not '#' comments.
+std::vector<std::string> DataLines(const fs::path& path) {
+  std::istringstream in(objscan::testing::ReadFile(path));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line[0] != '#') lines.push_back(line);
+  }
+  return lines;
+}
+
+// A run's PLY files open coloured by category in any viewer and name their classes: scene.ply and
+// models.ply keep x y z (nx ny nz) object_id category_id and add red green blue from the palette of
+// the top view legend, `label` (= category_id) and `instance` (= object_id); every point of a
+// reported object carries that object's category from run.json; the header and categories.json name
+// every id with the same colour. trajectory.tum has one line per view of trajectory.csv, at the
+// camera positions and yaw/pitch written there, with unit quaternions; the last view of each step is
+// run.json's step pose.
+TEST(RunE2eTest, PlyFilesCarryCategoryColoursAndNamesAndTheTumTrajectoryHoldsTheViews) {
+  namespace world = objscan::world;
+  fs::path dir;
+  const std::string db = ScratchWithSmallDatabase("objscan_run_e2e_viewers", &dir);
+  ASSERT_FALSE(db.empty());
+  const Result r = RunObjscan("run --scene procedural:bathroom:1 --db " + db +
+                              " --seed 3 --set scanner.max_steps=8 --out " + (dir / "a").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path out = dir / "a";
+  const nlohmann::json run = ReadJson(out / "run.json");
+
+  // categories.json: -1 and every category, names and palette colours.
+  const nlohmann::json categories = ReadJson(out / "categories.json");
+  ASSERT_EQ(categories["categories"].size(), 1u + world::kNumCategories);
+  std::map<int, std::string> comment_of_id;
+  for (const auto& c : categories["categories"]) {
+    const int id = c["id"];
+    const auto rgb = world::LabelColor(id);
+    EXPECT_EQ(c["color"], nlohmann::json({rgb[0], rgb[1], rgb[2]})) << id;
+    EXPECT_EQ(c["name"], id < 0 ? std::string("unrecognized") : world::CategoryName(static_cast<world::Category>(id)));
+    comment_of_id[id] = "category " + std::to_string(id) + " " + c["name"].get<std::string>() + " " +
+                        std::to_string(rgb[0]) + " " + std::to_string(rgb[1]) + " " + std::to_string(rgb[2]);
+  }
+
+  std::map<int, int> category_of_object;  // reported objects with a category, from run.json
+  int complete_objects = 0;
+  for (const auto& o : run["objects"]) {
+    if (!o["category"].is_null()) {
+      category_of_object[o["id"]] = world::CategoryId(*world::ParseCategory(o["category"].get<std::string>()));
+    }
+    complete_objects += o["complete"].get<bool>() ? 1 : 0;
+  }
+  ASSERT_FALSE(category_of_object.empty());
+  ASSERT_GT(complete_objects, 0);  // so models.ply has points to check
+
+  for (const char* name : {"scene.ply", "models.ply"}) {
+    SCOPED_TRACE(name);
+    const objscan::io::PlyData ply = objscan::io::ReadPly((out / name).string());
+    ASSERT_GT(ply.points.size(), 0u);
+    ASSERT_EQ(ply.colors.size(), ply.points.size());
+    std::vector<std::string> field_names;
+    for (const auto& [n, values] : ply.int_properties) field_names.push_back(n);
+    EXPECT_EQ(field_names, (std::vector<std::string>{"object_id", "category_id", "label", "instance"}));
+    const auto* object_id = IntProperty(ply, "object_id");
+    const auto* category_id = IntProperty(ply, "category_id");
+    const auto* label = IntProperty(ply, "label");
+    const auto* instance = IntProperty(ply, "instance");
+    ASSERT_TRUE(object_id && category_id && label && instance);
+    EXPECT_EQ(*label, *category_id);
+    EXPECT_EQ(*instance, *object_id);
+    std::map<int, long> points_per_label;
+    std::set<int> complete_instances;
+    for (std::size_t i = 0; i < ply.points.size(); ++i) {
+      const int l = (*label)[i];
+      const auto rgb = world::LabelColor(l);
+      ASSERT_EQ(ply.colors[i], (std::array<std::uint8_t, 3>{rgb[0], rgb[1], rgb[2]})) << "point " << i;
+      ++points_per_label[l];
+      const auto it = category_of_object.find((*instance)[i]);
+      if (it != category_of_object.end()) {
+        ASSERT_EQ(l, it->second) << "point " << i << " of object " << (*instance)[i];
+      }
+      complete_instances.insert((*instance)[i]);
+    }
+    if (std::string(name) == "models.ply") {
+      EXPECT_EQ(static_cast<int>(complete_instances.size()), complete_objects);
+    } else {
+      // The room's floor and walls and at least one object category, each in its own colour.
+      EXPECT_GT(points_per_label[world::CategoryId(world::Category::kFloor)], 0);
+      EXPECT_GT(points_per_label[world::CategoryId(world::Category::kWall)], 0);
+      int object_labels = 0;
+      for (const auto& [l, n] : points_per_label) {
+        object_labels += l >= 0 && !world::IsStructural(static_cast<world::Category>(l)) ? 1 : 0;
+      }
+      EXPECT_GE(object_labels, 1);
+    }
+    // The header names every id as categories.json does.
+    for (const auto& [id, comment] : comment_of_id) {
+      EXPECT_NE(std::find(ply.comments.begin(), ply.comments.end(), comment), ply.comments.end()) << comment;
+    }
+  }
+  // coverage.ply: its own colours and ground-truth instance, plus `label` (= category_id).
+  const objscan::io::PlyData coverage = objscan::io::ReadPly((out / "coverage.ply").string());
+  ASSERT_NE(IntProperty(coverage, "label"), nullptr);
+  EXPECT_EQ(*IntProperty(coverage, "label"), *IntProperty(coverage, "category_id"));
+
+  // trajectory.tum against trajectory.csv's views and run.json.
+  const std::vector<std::string> tum = DataLines(out / "trajectory.tum");
+  std::vector<std::vector<double>> csv_views;
+  std::vector<int> csv_view_steps;
+  for (const std::string& line : DataLines(out / "trajectory.csv")) {
+    if (line.rfind("step,", 0) == 0) continue;  // the header
+    std::vector<double> v;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 11u) << line;
+    if (v[10] == 1.0) {
+      csv_views.push_back(v);
+      csv_view_steps.push_back(static_cast<int>(v[0]));
+    }
+  }
+  ASSERT_EQ(tum.size(), run["metrics"]["views"].get<std::size_t>());
+  ASSERT_EQ(tum.size(), csv_views.size());
+  std::map<int, Eigen::Quaterniond> last_view_of_step;
+  double previous_t = -1.0;
+  for (std::size_t i = 0; i < tum.size(); ++i) {
+    std::istringstream row(tum[i]);
+    double t, x, y, z, qx, qy, qz, qw;
+    ASSERT_TRUE(row >> t >> x >> y >> z >> qx >> qy >> qz >> qw) << tum[i];
+    const std::vector<double>& c = csv_views[i];
+    EXPECT_GE(t, previous_t) << "line " << i;
+    previous_t = t;
+    EXPECT_NEAR(t, c[1], 1e-4) << "line " << i;
+    EXPECT_NEAR(x, c[5], 1e-4) << "line " << i;
+    EXPECT_NEAR(y, c[6], 1e-4) << "line " << i;
+    EXPECT_NEAR(z, c[7], 1e-4) << "line " << i;
+    const Eigen::Quaterniond q(qw, qx, qy, qz);
+    EXPECT_NEAR(q.norm(), 1.0, 1e-6) << "line " << i;
+    objscan::geometry::Pose3 T = objscan::geometry::Pose3::Identity();
+    T.linear() = q.normalized().toRotationMatrix();
+    double yaw = 0, pitch = 0;
+    objscan::geometry::YawPitchOfCamera(T, &yaw, &pitch);
+    EXPECT_NEAR(std::remainder(objscan::geometry::RadToDeg(yaw) - c[8], 360.0), 0.0, 1e-3) << "line " << i;
+    EXPECT_NEAR(objscan::geometry::RadToDeg(pitch), c[9], 1e-3) << "line " << i;
+    last_view_of_step[csv_view_steps[i]] = q;
+  }
+  for (const auto& step : run["steps"]) {
+    const auto it = last_view_of_step.find(step["index"].get<int>());
+    if (it == last_view_of_step.end()) continue;  // a step without a view
+    const auto& w = step["pose"]["quat_wxyz"];
+    const Eigen::Quaterniond q(w[0].get<double>(), w[1].get<double>(), w[2].get<double>(), w[3].get<double>());
+    EXPECT_NEAR(std::abs(q.dot(it->second)), 1.0, 1e-6) << "step " << step["index"];
+  }
   fs::remove_all(dir);
 }
 

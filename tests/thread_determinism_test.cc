@@ -75,7 +75,8 @@ TEST(ThreadDeterminismTest, OneAndTwoThreadsGiveTheSameDatabaseAndRun) {
   EXPECT_GT(run1["metrics"]["views"].get<int>(), 0);
   EXPECT_EQ(Comparable(run1), Comparable(run2));
   // The other files hold no timing: byte for byte.
-  for (const char* file : {"scene.ply", "models.ply", "coverage.ply", "trajectory.csv", "topview.png", "navmap.png"}) {
+  for (const char* file : {"scene.ply", "models.ply", "coverage.ply", "trajectory.csv", "trajectory.tum",
+                           "categories.json", "topview.png", "navmap.png"}) {
     const std::string a = ReadFile(dir / "t1" / file);
     EXPECT_FALSE(a.empty()) << file;
     EXPECT_TRUE(a == ReadFile(dir / "t2" / file)) << file << " differs between 1 and 2 threads";

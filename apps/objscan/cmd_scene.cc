@@ -6,6 +6,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "objscan/io/category_labels.h"
 #include "objscan/io/ply.h"
 #include "objscan/io/scene_spec.h"
 #include "objscan/io/topview.h"
@@ -56,23 +57,23 @@ Json SceneInfo(const world::Scene& scene) {
 }
 
 // The scene mesh in the world frame; vertices are not shared between objects, so each carries its
-// object's instance and category ids (and the category colour for viewers).
+// object's instance and category ids (and the category colour, `label` and `instance` for viewers).
 io::PlyData SceneMesh(const world::Scene& scene) {
   io::PlyData ply;
   std::vector<std::int32_t> instance_ids, category_ids;
   for (const auto& o : scene.objects()) {
     const int offset = static_cast<int>(ply.points.size());
-    const auto color = world::CategoryColor(o.category);
     for (const auto& v : o.mesh.vertices) {
       ply.points.push_back((o.T_world_object * v.cast<double>()).cast<float>());
-      ply.colors.push_back({color[0], color[1], color[2]});
       instance_ids.push_back(o.instance_id);
       category_ids.push_back(world::CategoryId(o.category));
     }
     for (const auto& t : o.mesh.triangles) ply.triangles.push_back(t + Eigen::Vector3i::Constant(offset));
   }
-  ply.int_properties.emplace_back("instance_id", std::move(instance_ids));
-  ply.int_properties.emplace_back("category_id", std::move(category_ids));
+  ply.int_properties.emplace_back("instance_id", instance_ids);
+  ply.int_properties.emplace_back("category_id", category_ids);
+  // `label` and `instance` and the category names, as in a run's PLY files.
+  io::AddCategoryLabels(category_ids, &instance_ids, /*colour_by_category=*/true, &ply);
   return ply;
 }
 

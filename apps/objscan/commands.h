@@ -15,5 +15,6 @@ void AddDbCommand(CLI::App& root, RunFn* run);
 void AddRunCommand(CLI::App& root, RunFn* run);
 void AddBenchCommand(CLI::App& root, RunFn* run);
 void AddReportCommand(CLI::App& root, RunFn* run);
+void AddViewCommand(CLI::App& root, RunFn* run);
 
 }  // namespace objscan::app

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   objscan::app::AddRunCommand(root, &run);
   objscan::app::AddBenchCommand(root, &run);
   objscan::app::AddReportCommand(root, &run);
+  objscan::app::AddViewCommand(root, &run);
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

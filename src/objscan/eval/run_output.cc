@@ -1,6 +1,7 @@
 #include "objscan/eval/run_output.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include "objscan/common/error.h"
 #include "objscan/io/atomic_file.h"
 #include "objscan/io/canvas.h"
+#include "objscan/io/category_labels.h"
 #include "objscan/io/ply.h"
 #include "objscan/mapping/surface_map.h"
 #include "objscan/recognition/database_builder.h"
@@ -36,6 +38,25 @@ Json ModelPoseJson(const geometry::Pose3& T) {
 }
 
 }  // namespace
+
+std::string TrajectoryTum(const scanning::RunRecord& record) {
+  std::ostringstream out;
+  out << "# objscan views: T_world_camera, camera frame x right y down z forward, time in simulated seconds\n"
+      << "# timestamp tx ty tz qx qy qz qw\n";
+  char line[256];
+  for (const auto& t : record.trajectory) {
+    if (!t.view) continue;
+    Eigen::Quaterniond q(t.T_world_camera.linear());
+    q.normalize();
+    // q and -q are the same rotation: qw >= 0 makes the file the same for the same run.
+    if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+    const Eigen::Vector3d p = t.T_world_camera.translation();
+    std::snprintf(line, sizeof(line), "%.6f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", t.time_s, p.x(), p.y(), p.z(), q.x(),
+                  q.y(), q.z(), q.w());
+    out << line;
+  }
+  return out.str();
+}
 
 std::string RunJson(const RunOutputInputs& in) {
   const scanning::RunRecord& r = *in.record;
@@ -201,17 +222,12 @@ void WriteRunTopView(const std::string& path, const RunOutputInputs& in) {
     // Seen from above the ceiling would hide the rooms under it (as in objscan scene --topview).
     if (cat == world::CategoryId(world::Category::kCeiling)) continue;
     const Eigen::Vector2d p = to_px.ToPixel(map.position(e).cast<double>());
-    io::Rgb color;
-    if (cat == world::CategoryId(world::Category::kFloor)) {
-      color = {235, 235, 235};
-    } else if (cat == world::CategoryId(world::Category::kWall)) {
-      color = {70, 70, 70};
-    } else if (cat >= 0) {
-      const auto c = world::CategoryColor(static_cast<world::Category>(cat));
-      color = io::ShadeRgb({c[0], c[1], c[2]}, 0.75 + 0.25 * std::min(1.0, map.position(e).z() / 1.5));
+    // The palette of the PLY files (world::LabelColor); objects shaded by height.
+    const auto c = world::LabelColor(cat);
+    io::Rgb color{c[0], c[1], c[2]};
+    if (cat >= 0 && !world::IsStructural(static_cast<world::Category>(cat))) {
+      color = io::ShadeRgb(color, 0.75 + 0.25 * std::min(1.0, map.position(e).z() / 1.5));
       categories_present.insert(cat);
-    } else {
-      color = {165, 165, 165};
     }
     canvas.FillRect(static_cast<int>(p.x()), static_cast<int>(p.y()), static_cast<int>(p.x()) + dot,
                     static_cast<int>(p.y()) + dot, color);
@@ -256,7 +272,8 @@ void WriteRunTopView(const std::string& path, const RunOutputInputs& in) {
     canvas.DrawText(x0 + 20, y + 3, world::CategoryName(static_cast<world::Category>(cat)), {0, 0, 0}, 1);
     y += 18;
   }
-  canvas.FillRect(x0, y, x0 + 14, y + 14, {165, 165, 165});
+  canvas.FillRect(x0, y, x0 + 14, y + 14,
+                  {world::kUnrecognizedColor[0], world::kUnrecognizedColor[1], world::kUnrecognizedColor[2]});
   canvas.DrawText(x0 + 20, y + 3, "unrecognized", {0, 0, 0}, 1);
   y += 18;
   canvas.DrawLine({double(x0), y + 8.0}, {x0 + 14.0, y + 8.0}, {220, 30, 30}, 2.0);
@@ -290,8 +307,12 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
     scene.points.push_back(map.position(e));
     scene.normals.push_back(map.normal(e));
   }
-  scene.int_properties.emplace_back("object_id", std::vector<std::int32_t>(object_id.begin(), object_id.end()));
-  scene.int_properties.emplace_back("category_id", std::vector<std::int32_t>(category_id.begin(), category_id.end()));
+  const std::vector<std::int32_t> scene_object(object_id.begin(), object_id.end());
+  const std::vector<std::int32_t> scene_category(category_id.begin(), category_id.end());
+  scene.int_properties.emplace_back("object_id", scene_object);
+  scene.int_properties.emplace_back("category_id", scene_category);
+  // Coloured by category with `label` and `instance`, the fields viewers and other tools look for.
+  io::AddCategoryLabels(scene_category, &scene_object, /*colour_by_category=*/true, &scene);
   io::WritePly((dir / "scene.ply").string(), scene);
 
   // models.ply: the database models that replaced complete objects, placed.
@@ -317,6 +338,7 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   }
   models.int_properties.emplace_back("object_id", model_object);
   models.int_properties.emplace_back("category_id", model_category);
+  io::AddCategoryLabels(model_category, &model_object, /*colour_by_category=*/true, &models);
   io::WritePly((dir / "models.ply").string(), models);
 
   // coverage.ply (ground truth known): every voxel of V_S, coloured green when it counts for the
@@ -344,6 +366,8 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
     coverage.int_properties.emplace_back("detected", detected);
     coverage.int_properties.emplace_back("reported", reported);
     coverage.int_properties.emplace_back("observable", observable);
+    // Coloured by coverage; its `instance` is the ground-truth one, so only `label` is added.
+    io::AddCategoryLabels(category, nullptr, /*colour_by_category=*/false, &coverage);
     io::WritePly((dir / "coverage.ply").string(), coverage);
   }
 
@@ -360,6 +384,8 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
         << ',' << (t.view ? 1 : 0) << '\n';
   }
   io::WriteFileAtomically((dir / "trajectory.csv").string(), csv.str());
+  io::WriteFileAtomically((dir / "trajectory.tum").string(), TrajectoryTum(*in.record));
+  io::WriteFileAtomically((dir / "categories.json").string(), io::CategoriesJson());
   WriteRunTopView((dir / "topview.png").string(), in);
   in.scanner->WriteNavigationMap((dir / "navmap.png").string());
   if (in.write_more_files) in.write_more_files(out_dir);

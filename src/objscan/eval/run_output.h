@@ -1,6 +1,7 @@
 #pragma once
-// Writes the output folder of `objscan run` (DESIGN.md): run.json, scene.ply, models.ply,
-// trajectory.csv, topview.png and navmap.png; with ground truth also coverage.ply (the voxels of V_S coloured by
+// Writes the output folder of `objscan run` (DESIGN.md): run.json, scene.ply, models.ply (both
+// coloured by category, with `label` and `instance`), categories.json, trajectory.csv, trajectory.tum,
+// topview.png and navmap.png; with ground truth also coverage.ply (the voxels of V_S coloured by
 // covered / seen but not recognised / never seen). Each file is written atomically.
 #include <functional>
 #include <string>
@@ -28,6 +29,9 @@ struct RunOutputInputs {
   std::function<void(const std::string& out_dir)> write_more_files;
 };
 
+// trajectory.tum: one line per view, "timestamp tx ty tz qx qy qz qw" (TUM RGB-D format, the
+// camera's optical frame in the world, simulated time), after two '#' comment lines.
+std::string TrajectoryTum(const scanning::RunRecord& record);
 // JSON text of run.json.
 std::string RunJson(const RunOutputInputs& in);
 // Writes all files into `out_dir` (created when missing), each atomically, run.json last: a folder

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
 
 namespace objscan::eval {
 namespace {
@@ -63,6 +65,54 @@ TEST(RunJsonTest, StructureWithWallsAndNoFloor) {
   record.structure.floor_height_m = 0.01;
   j = nlohmann::json::parse(RunJson(in));
   EXPECT_EQ(j["structure"]["floor_height_m"], 0.01);
+}
+
+// trajectory.tum: a line per view (driving samples left out), the camera position and its rotation
+// as a unit quaternion with qw >= 0, in the order taken.
+TEST(TrajectoryTumTest, OneLinePerViewWithTheCameraPose) {
+  scanning::RunRecord record;
+  const std::vector<std::pair<double, double>> yaw_pitch_deg = {{0, 0}, {90, -20}, {-170, 10}};
+  for (std::size_t i = 0; i < yaw_pitch_deg.size(); ++i) {
+    scanning::TrajectorySample driving;
+    driving.time_s = 2.0 * i;
+    driving.view = false;
+    record.trajectory.push_back(driving);
+    scanning::TrajectorySample view;
+    view.time_s = 2.0 * i + 1.0;
+    view.view = true;
+    view.T_world_camera = geometry::CameraPoseFromYawPitch(Eigen::Vector3d(1.0 + i, -2.0, 1.2),
+                                                           geometry::DegToRad(yaw_pitch_deg[i].first),
+                                                           geometry::DegToRad(yaw_pitch_deg[i].second));
+    record.trajectory.push_back(view);
+  }
+  std::istringstream in(TrajectoryTum(record));
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] != '#') rows.push_back(line);
+  }
+  ASSERT_EQ(rows.size(), 3u);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::istringstream row(rows[i]);
+    double t, x, y, z, qx, qy, qz, qw;
+    ASSERT_TRUE(row >> t >> x >> y >> z >> qx >> qy >> qz >> qw) << rows[i];
+    std::string rest;
+    EXPECT_FALSE(row >> rest) << "more than 8 columns: " << rows[i];
+    EXPECT_DOUBLE_EQ(t, 2.0 * i + 1.0);
+    EXPECT_NEAR(x, 1.0 + i, 1e-6);
+    EXPECT_NEAR(y, -2.0, 1e-6);
+    EXPECT_NEAR(z, 1.2, 1e-6);
+    const Eigen::Quaterniond q(qw, qx, qy, qz);
+    EXPECT_NEAR(q.norm(), 1.0, 1e-8);
+    EXPECT_GE(qw, 0.0);
+    const geometry::Pose3& T = record.trajectory[2 * i + 1].T_world_camera;
+    EXPECT_TRUE(q.toRotationMatrix().isApprox(T.linear(), 1e-8)) << rows[i];
+    // The optical axis (camera z) points where yaw and pitch say.
+    double yaw = 0, pitch = 0;
+    geometry::YawPitchOfCamera(geometry::Pose3(q.toRotationMatrix()), &yaw, &pitch);
+    EXPECT_NEAR(geometry::RadToDeg(geometry::WrapAngle(yaw - geometry::DegToRad(yaw_pitch_deg[i].first))), 0.0, 1e-5);
+    EXPECT_NEAR(geometry::RadToDeg(pitch), yaw_pitch_deg[i].second, 1e-5);
+  }
 }
 
 }  // namespace

@@ -55,6 +55,13 @@ void CheckPlyData(const std::string& path, const PlyData& data) {
       }
     }
   }
+  for (const auto& comment : data.comments) {
+    // A line break would end the comment and start a header line readers reject.
+    if (comment.find_first_of("\r\n") != std::string::npos) {
+      throw InputError(path + ": cannot write PLY: a header comment spans lines (starts '" +
+                       comment.substr(0, comment.find_first_of("\r\n")) + "')");
+    }
+  }
 }
 
 }  // namespace
@@ -76,6 +83,9 @@ void WritePly(const std::string& path, const PlyData& data, bool binary) {
   out += "ply\n";
   out += binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
   out += "comment written by objscan\n";
+  for (const auto& comment : data.comments) {
+    if (comment != "written by objscan") out += "comment " + comment + "\n";  // a file read back keeps one
+  }
   out += "element vertex " + std::to_string(n) + "\n";
   out += "property float x\nproperty float y\nproperty float z\n";
   if (has_normals) out += "property float nx\nproperty float ny\nproperty float nz\n";
@@ -259,11 +269,16 @@ PlyData ReadPly(const std::string& path) {
   bool have_format = false;
   bool have_end = false;
   std::vector<Element> elements;
+  std::vector<std::string> comments;
   while (next_line(&line)) {
     std::istringstream ss(line);
     std::string keyword;
     ss >> keyword;
-    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "comment") {
+      comments.push_back(line.size() > 8 ? line.substr(8) : std::string());
+      continue;
+    }
+    if (keyword.empty() || keyword == "obj_info") continue;
     if (keyword == "end_header") {
       have_end = true;
       break;
@@ -323,6 +338,7 @@ PlyData ReadPly(const std::string& path) {
     }
   }
   PlyData data;
+  data.comments = std::move(comments);
   BodyReader body(path, file, pos, format);
   bool have_vertices = false;
   for (const Element& e : elements) {

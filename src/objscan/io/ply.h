@@ -18,6 +18,9 @@ struct PlyData {
   std::vector<std::array<std::uint8_t, 3>> colors;      // empty or per point: "red green blue"
   std::vector<std::pair<std::string, std::vector<std::int32_t>>> int_properties;  // per point, e.g. "object_id"
   std::vector<Eigen::Vector3i> triangles;               // empty for a point cloud: "vertex_indices"
+  // Header "comment" lines (without the keyword), e.g. the names of label ids; one line each. The
+  // writer puts "written by objscan" first; the reader returns every comment of the file.
+  std::vector<std::string> comments;
 };
 
 void WritePly(const std::string& path, const PlyData& data, bool binary = true);

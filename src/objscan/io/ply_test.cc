@@ -132,6 +132,27 @@ TEST(PlyTest, CorruptFilesNameThePath) {
   ExpectInputError([&] { ReadPly(dir.File("cut.ply")); }, "cut.ply");
 }
 
+// Header comments (category names, say) come back in order after the writer's own, in both formats;
+// a file read and written again keeps one "written by objscan".
+TEST(PlyTest, CommentsRoundTrip) {
+  TempDir dir;
+  PlyData d = MakeSample();
+  d.comments = {"category 4 chair 148 103 189", "second  comment with  spaces"};
+  for (const bool binary : {true, false}) {
+    const std::string path = dir.File(binary ? "cb.ply" : "ca.ply");
+    WritePly(path, d, binary);
+    const PlyData back = ReadPly(path);
+    EXPECT_EQ(back.comments,
+              (std::vector<std::string>{"written by objscan", "category 4 chair 148 103 189", "second  comment with  spaces"}));
+    ExpectSame(d, back);
+    WritePly(dir.File("again.ply"), back, binary);
+    EXPECT_EQ(ReadPly(dir.File("again.ply")).comments, back.comments);
+  }
+  d.comments = {"two\nlines"};
+  ExpectInputError([&] { WritePly(dir.File("x.ply"), d); }, "spans lines");
+  EXPECT_FALSE(std::filesystem::exists(dir.File("x.ply")));
+}
+
 TEST(PlyTest, InconsistentDataIsRejectedAndLeavesNoFile) {
   TempDir dir;
   PlyData d = MakeSample();

@@ -8,10 +8,6 @@
 
 #include "objscan/common/error.h"
 
-#ifndef OBJSCAN_DEFAULT_CONFIG_DIR
-#define OBJSCAN_DEFAULT_CONFIG_DIR "config"
-#endif
-
 namespace objscan::io {
 namespace fs = std::filesystem;
 namespace {
@@ -34,16 +30,6 @@ std::string Trim(const std::string& s) {
 }
 
 }  // namespace
-
-std::string ConfigDir() {
-  if (const char* env = std::getenv("OBJSCAN_CONFIG_DIR"); env != nullptr && *env != '\0') return env;
-  return OBJSCAN_DEFAULT_CONFIG_DIR;
-}
-
-std::string ResolveConfigPath(const std::string& path) {
-  if (path.empty() || fs::path(path).is_absolute()) return path;
-  return (fs::path(ConfigDir()) / path).string();
-}
 
 SuncgModelMapping SuncgModelMapping::Load(const std::string& path) {
   std::ifstream in(path);

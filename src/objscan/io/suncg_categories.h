@@ -6,15 +6,11 @@
 #include <string>
 #include <unordered_map>
 
+#include "objscan/io/data_paths.h"  // ConfigDir, ResolveConfigPath (relative table paths)
 #include "objscan/world/category.h"
 
 namespace objscan::io {
 
-// The folder relative config paths resolve against: $OBJSCAN_CONFIG_DIR when set, else the
-// project's config/ folder as compiled in.
-std::string ConfigDir();
-// `path` when absolute, else ConfigDir()/path.
-std::string ResolveConfigPath(const std::string& path);
 
 struct SuncgClasses {
   std::string fine_grained;

@@ -1,6 +1,6 @@
 #include "objscan/scanning/system_config.h"
 
-#include <cstdlib>
+#include "objscan/io/data_paths.h"
 
 namespace objscan::scanning {
 
@@ -24,9 +24,6 @@ std::string ToYaml(const SystemConfig& config) {
 
 std::string ToJson(const SystemConfig& config, int indent) { return config::ToJson(config::Dump(config), indent); }
 
-std::string ConfigDir() {
-  if (const char* env = std::getenv("OBJSCAN_CONFIG_DIR")) return env;
-  return OBJSCAN_CONFIG_DIR_DEFAULT;
-}
+std::string ConfigDir() { return io::ConfigDir(); }
 
 }  // namespace objscan::scanning

@@ -146,7 +146,8 @@ SystemConfig LoadSystemConfig(const std::string& config_file, const std::vector<
 std::string ToYaml(const SystemConfig& config);
 std::string ToJson(const SystemConfig& config, int indent = 2);
 
-// The project's config/ folder ($OBJSCAN_CONFIG_DIR overrides the compiled-in path).
+// The config/ folder: io::ConfigDir() ($OBJSCAN_CONFIG_DIR, else the source tree's when running from
+// the build tree, else the installed share/objscan/config).
 std::string ConfigDir();
 
 }  // namespace objscan::scanning

@@ -33,4 +33,9 @@ std::array<unsigned char, 3> CategoryColor(Category c) {
   return {kColors[i][0], kColors[i][1], kColors[i][2]};
 }
 
+std::array<unsigned char, 3> LabelColor(int category_id) {
+  if (category_id < 0 || category_id >= kNumCategories) return kUnrecognizedColor;
+  return CategoryColor(static_cast<Category>(category_id));
+}
+
 }  // namespace objscan::world

@@ -24,5 +24,10 @@ inline bool IsStructural(Category c) {
 inline int CategoryId(Category c) { return static_cast<int>(c); }
 // Stable display colour (RGB) per category for top views and PLY export.
 std::array<unsigned char, 3> CategoryColor(Category c);
+// Colour of surface no category was given to ("unrecognized" in top view legends, label -1 in PLY files).
+constexpr std::array<unsigned char, 3> kUnrecognizedColor = {165, 165, 165};
+// The colour of a category id as written in PLY `label` fields: CategoryColor for 0..kNumCategories-1,
+// kUnrecognizedColor for -1 and any other id.
+std::array<unsigned char, 3> LabelColor(int category_id);
 
 }  // namespace objscan::world

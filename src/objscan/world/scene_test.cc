@@ -15,6 +15,15 @@ TEST(CategoryTest, NamesRoundTrip) {
   EXPECT_FALSE(IsStructural(Category::kChair));
 }
 
+// PLY labels: a category's own colour, the unrecognized grey for -1 and ids out of range.
+TEST(CategoryTest, LabelColors) {
+  EXPECT_EQ(LabelColor(CategoryId(Category::kSofa)), CategoryColor(Category::kSofa));
+  EXPECT_EQ(LabelColor(CategoryId(Category::kCeiling)), CategoryColor(Category::kCeiling));
+  EXPECT_EQ(LabelColor(-1), (std::array<unsigned char, 3>{165, 165, 165}));
+  EXPECT_EQ(LabelColor(kNumCategories), kUnrecognizedColor);
+  EXPECT_NE(LabelColor(-1), CategoryColor(Category::kOther));
+}
+
 TEST(SceneTest, SoupCarriesInstanceIdsAndWorldCoordinates) {
   Scene scene("t");
   SceneObject box;
