@@ -22,8 +22,12 @@ target_include_directories(objscan_library PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 target_compile_features(objscan_library PUBLIC cxx_std_17)
 target_link_libraries(objscan_library PUBLIC Eigen3::Eigen Threads::Threads PRIVATE ${objscan_private_deps} ${CMAKE_DL_LIBS})
-# A library with an undefined symbol fails here, not in the consumer's link.
-target_link_options(objscan_library PRIVATE -Wl,--no-undefined)
+# A library with an undefined symbol fails here, not in the consumer's link. Not with sanitizers:
+# clang links their runtimes into programs only, a shared library takes __asan_*/__ubsan_* from the
+# program that loads it, so they are undefined in libobjscan.so by design.
+if(NOT OBJSCAN_SANITIZE)
+  target_link_options(objscan_library PRIVATE -Wl,--no-undefined)
+endif()
 
 # Headers of the library; the tests' helpers (gtest) stay out.
 file(GLOB_RECURSE objscan_public_headers RELATIVE ${PROJECT_SOURCE_DIR}/src CONFIGURE_DEPENDS

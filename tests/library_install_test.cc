@@ -59,11 +59,17 @@ TEST(LibraryInstallTest, ExampleConsumerBuildsAgainstTheInstalledPackageAndScans
   ASSERT_TRUE(std::regex_search(targets, m, std::regex(R"(INTERFACE_LINK_LIBRARIES "([^"]*)\")"))) << targets;
   EXPECT_EQ(m[1].str(), "Eigen3::Eigen;Threads::Threads");
 
-  // The example, configured and built against the installed package only.
+  // The example, configured and built against the installed package only, with the compiler (and in
+  // a sanitizer build the -fsanitize flags) this build used.
   const fs::path example_build = scratch / "example";
+  std::string example_flags = " -DCMAKE_CXX_COMPILER=" + Quoted(OBJSCAN_CXX_COMPILER);
+  const std::string sanitize_flags = OBJSCAN_SANITIZE_FLAGS;
+  if (!sanitize_flags.empty()) {
+    example_flags += " -DCMAKE_CXX_FLAGS=" + Quoted(sanitize_flags) + " -DCMAKE_EXE_LINKER_FLAGS=" + Quoted(sanitize_flags);
+  }
   const auto configure = RunCommand(cmake, "-S " + Quoted(fs::path(OBJSCAN_SOURCE_DIR) / "examples" / "cpp") + " -B " +
                                                Quoted(example_build) + " -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" +
-                                               Quoted(prefix));
+                                               Quoted(prefix) + example_flags);
   ASSERT_EQ(configure.exit_code, 0) << configure.out << configure.err;
   const auto build = RunCommand(cmake, "--build " + Quoted(example_build));
   ASSERT_EQ(build.exit_code, 0) << build.out << build.err;
