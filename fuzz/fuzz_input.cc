@@ -54,10 +54,15 @@ void MakeFixtures(const fs::path& ws) {
             "triangle.obj</uri><scale>2 2 2</scale></mesh></geometry></visual></link></model></sdf>\n");
 }
 
-void RemoveWorkspace() {
-  std::error_code ec;
-  fs::remove_all(Workspace(), ec);
-}
+// The workspace folder, removed when the process exits (by the destructor of the static holding it:
+// an atexit handler registered while that static is being made would run after its destruction).
+struct WorkspaceFolder {
+  std::string path;
+  ~WorkspaceFolder() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   for (std::size_t pos = text.find(from); pos != std::string::npos; pos = text.find(from, pos + to.size())) {
@@ -198,17 +203,16 @@ Target TargetFromName(const std::string& name) {
 }
 
 const std::string& Workspace() {
-  static const std::string ws = [] {
+  static const WorkspaceFolder ws = [] {
     std::error_code ec;
     const fs::path base = fs::is_directory("/dev/shm", ec) ? fs::path("/dev/shm") : fs::temp_directory_path();
     const fs::path dir = base / ("objscan-fuzz-" + std::to_string(::getpid()));
     fs::remove_all(dir, ec);
     fs::create_directories(dir);
     MakeFixtures(dir);
-    std::atexit(RemoveWorkspace);
-    return dir.string();
+    return WorkspaceFolder{dir.string()};
   }();
-  return ws;
+  return ws.path;
 }
 
 std::string RunInput(Target target, const std::uint8_t* data, std::size_t size) {

@@ -22,7 +22,7 @@ std::string ReadFile(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-std::string Run(Target target, const std::string& input) {
+std::string LoadInput(Target target, const std::string& input) {
   return RunInput(target, reinterpret_cast<const std::uint8_t*>(input.data()), input.size());
 }
 
@@ -41,7 +41,7 @@ TEST(FuzzCorpusTest, EverySeedOfEveryTargetLoads) {
     const std::vector<fs::path> seeds = FilesIn(fs::path(OBJSCAN_FUZZ_DIR) / "corpus" / TargetName(target));
     EXPECT_GE(seeds.size(), 3u) << TargetName(target) << ": a few seeds per target";
     for (const fs::path& seed : seeds) {
-      EXPECT_EQ(Run(target, ReadFile(seed)), "") << seed;
+      EXPECT_EQ(LoadInput(target, ReadFile(seed)), "") << seed;
     }
   }
 }
@@ -54,7 +54,7 @@ TEST(FuzzRegressionTest, EveryFoundInputGivesItsRecordedAnswer) {
       ASSERT_TRUE(fs::exists(expected_path)) << input << " has no " << expected_path.filename();
       std::string expected = ReadFile(expected_path);
       while (!expected.empty() && expected.back() == '\n') expected.pop_back();
-      const std::string got = Run(target, ReadFile(input));
+      const std::string got = LoadInput(target, ReadFile(input));
       EXPECT_EQ(got.empty() ? "loads" : got, expected) << input;
       ++replayed;
     }
@@ -65,14 +65,14 @@ TEST(FuzzRegressionTest, EveryFoundInputGivesItsRecordedAnswer) {
 // The harness itself: a bad input is an InputError naming the file, a good one loads, and the
 // contract check catches a message that names no file.
 TEST(FuzzHarnessTest, BadInputGivesTheLoadersOneLineAndGoodInputLoads) {
-  EXPECT_EQ(Run(Target::kPly, "not a ply\n"), "<ws>/input.ply: bad PLY: missing 'ply' magic line");
-  EXPECT_EQ(Run(Target::kPly, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+  EXPECT_EQ(LoadInput(Target::kPly, "not a ply\n"), "<ws>/input.ply: bad PLY: missing 'ply' magic line");
+  EXPECT_EQ(LoadInput(Target::kPly, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
                               "property float z\nend_header\n1 2 3\n"),
             "");
-  EXPECT_EQ(Run(Target::kConfig, "#--set\nsensor.width_px=-3\n"),
-            "config: sensor.width_px must be > 0 (got -3)");
-  EXPECT_EQ(Run(Target::kConfig, "sensor:\n  width_px: 320\n#--set\nsensor.noise=false\n"), "");
-  EXPECT_EQ(Run(Target::kConfig, "#--set\nnot an assignment\n"), "--set 'not an assignment': expected key=value");
+  EXPECT_EQ(LoadInput(Target::kConfig, "#--set\nsensor.width_px=-3\n"),
+            "config: sensor.width_px must be in [1.000000, 16384.000000] (got -3.000000)");
+  EXPECT_EQ(LoadInput(Target::kConfig, "sensor:\n  width_px: 320\n#--set\nsensor.noise=false\n"), "");
+  EXPECT_EQ(LoadInput(Target::kConfig, "#--set\nnot an assignment\n"), "--set 'not an assignment': expected key=value");
 }
 
 TEST(FuzzHarnessTest, TargetNamesRoundTrip) {
