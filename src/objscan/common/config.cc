@@ -16,7 +16,11 @@ void Flatten(const YAML::Node& node, const std::string& key, const std::string& 
   switch (node.Type()) {
     case YAML::NodeType::Map:
       for (const auto& kv : node) {
-        const std::string child = kv.first.as<std::string>();
+        if (!kv.first.IsScalar()) {
+          throw ConfigError(origin + ": a key " + (key.empty() ? "at the top level" : "under '" + key + "'") +
+                            " is not a name (a list or a mapping)");
+        }
+        const std::string child = kv.first.Scalar();
         Flatten(kv.second, key.empty() ? child : key + "." + child, origin, out);
       }
       break;
@@ -27,13 +31,13 @@ void Flatten(const YAML::Node& node, const std::string& key, const std::string& 
           throw ConfigError(origin + ": config key '" + key + "' must be a list of numbers or names");
         }
         if (i) joined += ",";
-        joined += node[i].as<std::string>();
+        joined += node[i].Scalar();
       }
       out->Set(key, joined, origin);
       break;
     }
     case YAML::NodeType::Scalar:
-      out->Set(key, node.as<std::string>(), origin);
+      out->Set(key, node.Scalar(), origin);
       break;
     case YAML::NodeType::Null:
       if (!key.empty()) throw ConfigError(origin + ": config key '" + key + "' has no value");
@@ -60,7 +64,9 @@ double ParseDouble(const std::string& text, const RawConfig::Entry& e, const std
   char* end = nullptr;
   errno = 0;
   const double v = std::strtod(t.c_str(), &end);
-  if (end != t.c_str() + t.size() || errno == ERANGE || std::isnan(v)) Bad(e, key, "a number");
+  // No config value is infinite or NaN: every one is a size, a count or a weight (an infinity would
+  // reach a float-to-integer conversion, undefined behaviour, in the stage that uses it).
+  if (end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v)) Bad(e, key, "a finite number");
   return v;
 }
 

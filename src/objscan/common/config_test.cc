@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "objscan/common/error.h"
+
 namespace objscan::config {
 namespace {
 
@@ -70,6 +72,42 @@ TEST(ConfigTest, RejectsBadValuesAndInvalidRanges) {
   RawConfig not_assignment;
   EXPECT_THROW(not_assignment.SetFromAssignment("count"), ConfigError);
   EXPECT_THROW(RawConfig::FromYamlString("a: [1, 2\n", "broken.yaml"), InputError);
+}
+
+// Infinities are no config value (they would reach float-to-integer conversions), and a YAML key that
+// is a list or a mapping is a config error naming the file, not a yaml-cpp exception.
+TEST(ConfigTest, RejectsInfinitiesAndKeysThatAreNotNames) {
+  Outer o;
+  for (const char* value : {"inf", "-inf", "infinity", "1e999"}) {
+    RawConfig raw;
+    raw.SetFromAssignment(std::string("inner.size_m=") + value);
+    try {
+      Apply(raw, &o);
+      ADD_FAILURE() << value << " accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("--set: config key 'inner.size_m' must be a finite number (got '") +
+                                           value + "')");
+    }
+  }
+  try {
+    RawConfig::FromYamlString("inner:\n  [a, b]: 1\n", "keys.yaml");
+    ADD_FAILURE() << "a list as key accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "keys.yaml: a key under 'inner' is not a name (a list or a mapping)");
+  }
+  try {
+    RawConfig::FromYamlString("{a: 1}: 2\n", "keys.yaml");
+    ADD_FAILURE() << "a mapping as key accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "keys.yaml: a key at the top level is not a name (a list or a mapping)");
+  }
+}
+
+// An InputError is one line whatever it quotes: control characters come out as escapes.
+TEST(InputErrorTest, ControlCharactersAreEscapedIntoOneLine) {
+  EXPECT_STREQ(InputError("f.yaml: bad value 'a\nb\r\tc\x01\x7f'").what(), "f.yaml: bad value 'a\\nb\\r\\tc\\x01\\x7f'");
+  EXPECT_STREQ(ConfigError("plain: kept as it is, UTF-8 \xc3\xa9 too").what(), "plain: kept as it is, UTF-8 \xc3\xa9 too");
+  EXPECT_EQ(OneLine(std::string("a\0b", 3)), "a\\x00b");
 }
 
 struct Leaf {

@@ -82,13 +82,13 @@ void CategoryMap::LoadFile(const std::string& path, std::vector<std::string>* st
     if (!fs::is_regular_file(included, ec)) throw InputError(path + ": included category map " + included + " not found");
     LoadFile(included, stack);
   };
-  for (const auto& entry : root) {
-    const std::string key = entry.first.as<std::string>();
-    if (key != "include" && key != "rules") {
-      throw InputError(path + ": unknown key '" + key + "' (a category map has 'include' and 'rules')");
-    }
-  }
   try {
+    for (const auto& entry : root) {
+      const std::string key = entry.first.as<std::string>();
+      if (key != "include" && key != "rules") {
+        throw InputError(path + ": unknown key '" + key + "' (a category map has 'include' and 'rules')");
+      }
+    }
     if (const YAML::Node include = root["include"]) {
       if (include.IsScalar()) {
         include_file(include.as<std::string>());

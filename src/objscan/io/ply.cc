@@ -239,6 +239,21 @@ std::string ReadWhole(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// A value read from the file as a 32-bit integer: false for NaN, an infinity, a fraction or a value
+// outside int32's range (converting those is undefined behaviour).
+bool ToInt32(double value, std::int32_t* out) {
+  if (!(value >= -2147483648.0 && value <= 2147483647.0) || value != std::floor(value)) return false;
+  *out = static_cast<std::int32_t>(value);
+  return true;
+}
+
+// A list's length as read from the file: a whole number in [0, max] (NaN fails both comparisons).
+bool ListLength(double value, double max, long* out) {
+  if (!(value >= 0.0 && value <= max) || value != std::floor(value)) return false;
+  *out = static_cast<long>(value);
+  return true;
+}
+
 int FindProperty(const Element& e, const char* name) {
   for (std::size_t i = 0; i < e.properties.size(); ++i) {
     if (e.properties[i].name == name && !e.properties[i].is_list) return static_cast<int>(i);
@@ -375,8 +390,11 @@ PlyData ReadPly(const std::string& path) {
         for (std::size_t i = 0; i < e.properties.size(); ++i) {
           const Property& p = e.properties[i];
           if (p.is_list) {
-            const double count = body.Next(p.count_type);
-            for (long k = 0; k < static_cast<long>(count); ++k) body.Next(p.type);
+            long count = 0;
+            if (!ListLength(body.Next(p.count_type), 1e7, &count)) {
+              throw bad("vertex " + std::to_string(v) + " has a bad list length for '" + p.name + "'");
+            }
+            for (long k = 0; k < count; ++k) body.Next(p.type);
             continue;
           }
           values[i] = body.Next(p.type);
@@ -387,11 +405,18 @@ PlyData ReadPly(const std::string& path) {
           const bool unit = !IsIntegerType(e.properties[ir].type);  // float colours in [0, 1]
           for (int k = 0; k < 3; ++k) {
             const double c = values[k == 0 ? ir : (k == 1 ? ig : ib)] * (unit ? 255.0 : 1.0);
-            data.colors[v][k] = static_cast<std::uint8_t>(std::clamp(std::lround(c), 0L, 255L));
+            // Clamped before rounding: NaN (fails both comparisons) and huge values have no long.
+            const double clamped = c > 255.0 ? 255.0 : (c >= 0.0 ? c : 0.0);
+            data.colors[v][k] = static_cast<std::uint8_t>(std::lround(clamped));
           }
         }
         for (std::size_t i = 0; i < e.properties.size(); ++i) {
-          if (slot[i] >= 0) data.int_properties[slot[i]].second.push_back(static_cast<std::int32_t>(values[i]));
+          if (slot[i] < 0) continue;
+          std::int32_t value = 0;
+          if (!ToInt32(values[i], &value)) {
+            throw bad("vertex " + std::to_string(v) + " property '" + e.properties[i].name + "' is not a 32-bit integer");
+          }
+          data.int_properties[slot[i]].second.push_back(value);
         }
       }
     } else if (e.name == "face") {
@@ -410,11 +435,22 @@ PlyData ReadPly(const std::string& path) {
             body.Next(p.type);
             continue;
           }
-          const double count = body.Next(p.count_type);
-          if (count < 0 || count > 1e6) throw bad("face " + std::to_string(f) + " has a bad vertex count");
+          long count = 0;
+          if (!ListLength(body.Next(p.count_type), 1e6, &count)) {
+            throw bad("face " + std::to_string(f) + " has a bad vertex count");
+          }
+          if (static_cast<int>(i) != list_index) {
+            for (long k = 0; k < count; ++k) body.Next(p.type);
+            continue;
+          }
           polygon.clear();
-          for (long k = 0; k < static_cast<long>(count); ++k) polygon.push_back(static_cast<int>(body.Next(p.type)));
-          if (static_cast<int>(i) != list_index) continue;
+          for (long k = 0; k < count; ++k) {
+            std::int32_t index = 0;
+            if (!ToInt32(body.Next(p.type), &index)) {
+              throw bad("face " + std::to_string(f) + " has a vertex index that is not a 32-bit integer");
+            }
+            polygon.push_back(index);
+          }
           // Polygons are split into a triangle fan.
           for (std::size_t k = 2; k < polygon.size(); ++k) {
             data.triangles.emplace_back(polygon[0], polygon[k - 1], polygon[k]);
@@ -425,9 +461,11 @@ PlyData ReadPly(const std::string& path) {
       for (std::size_t r = 0; r < e.count; ++r) {
         for (const Property& p : e.properties) {
           if (p.is_list) {
-            const double count = body.Next(p.count_type);
-            if (count < 0 || count > 1e7) throw bad("element '" + e.name + "' has a bad list length");
-            for (long k = 0; k < static_cast<long>(count); ++k) body.Next(p.type);
+            long count = 0;
+            if (!ListLength(body.Next(p.count_type), 1e7, &count)) {
+              throw bad("element '" + e.name + "' has a bad list length");
+            }
+            for (long k = 0; k < count; ++k) body.Next(p.type);
           } else {
             body.Next(p.type);
           }

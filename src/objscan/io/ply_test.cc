@@ -125,6 +125,32 @@ TEST(PlyTest, CorruptFilesNameThePath) {
                      "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
                      "property float y\nproperty float z\nend_header\n");
   ExpectInputError([&] { ReadPly(dir.File("huge.ply")); }, "huge.ply");
+  // Values that do not fit their use (found by fuzzing: converting them was undefined behaviour):
+  // a vertex index beyond int32, a NaN list length, a non-integer index, an int property beyond int32.
+  const std::string xyz = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string face = "element face 1\nproperty list uchar uint vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  const auto expect_error = [&](const std::string& name, const std::string& text, const std::string& what) {
+    testing::WriteText(dir.File(name), text);
+    try {
+      ReadPly(dir.File(name));
+      ADD_FAILURE() << name << " read";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), dir.File(name) + ": bad PLY: " + what);
+    }
+  };
+  expect_error("big_index.ply", xyz + face + "3 0 1 4294967295\n", "face 0 has a vertex index that is not a 32-bit integer");
+  expect_error("nan_count.ply", xyz + face + "nan 0 1 2\n", "face 0 has a bad vertex count");
+  expect_error("half_index.ply", xyz + face + "3 0 1 1.5\n", "face 0 has a vertex index that is not a 32-bit integer");
+  expect_error("big_label.ply", xyz + "property uint label\nend_header\n0 0 0 3000000000\n1 0 0 1\n0 1 0 2\n",
+               "vertex 0 property 'label' is not a 32-bit integer");
+  expect_error("vertex_list.ply", xyz + "property list uchar int extra\nend_header\n0 0 0 -1\n1 0 0 0\n0 1 0 0\n",
+               "vertex 0 has a bad list length for 'extra'");
+  // NaN colours are black, not an undefined conversion.
+  testing::WriteText(dir.File("nan_colour.ply"), xyz + "property float red\nproperty float green\nproperty float blue\n"
+                                                   "end_header\n0 0 0 nan 2 0.5\n1 0 0 0 0 0\n0 1 0 1 1 1\n");
+  const PlyData coloured = ReadPly(dir.File("nan_colour.ply"));
+  ASSERT_EQ(coloured.colors.size(), 3u);
+  EXPECT_EQ(coloured.colors[0], (std::array<std::uint8_t, 3>{0, 255, 128}));
   // Binary file cut short.
   WritePly(dir.File("full.ply"), MakeSample());
   std::filesystem::copy_file(dir.File("full.ply"), dir.File("cut.ply"));

@@ -77,7 +77,8 @@ class SceneFileParser {
 
   void CheckKeys(const YAML::Node& node, const std::string& element, const std::set<std::string>& allowed) const {
     for (const auto& kv : node) {
-      const std::string key = kv.first.as<std::string>();
+      if (!kv.first.IsScalar()) throw InputError(Where(element) + ": a key is not a name (a list or a mapping)");
+      const std::string key = kv.first.Scalar();
       if (!allowed.count(key)) throw InputError(Where(element) + ": unknown key '" + key + "'");
     }
   }
@@ -195,6 +196,13 @@ class SceneFileParser {
 
 }  // namespace
 
-world::Scene LoadSceneFile(const std::string& path) { return SceneFileParser(path).Parse(); }
+world::Scene LoadSceneFile(const std::string& path) {
+  try {
+    return SceneFileParser(path).Parse();
+  } catch (const YAML::Exception& e) {
+    // The parser checks each node's type before converting it; this is the net for the rest.
+    throw InputError(path + ": malformed scene file: " + e.what());
+  }
+}
 
 }  // namespace objscan::io

@@ -89,6 +89,11 @@ TEST(SceneFileTest, BadFilesNameTheKeyOrElement) {
   ExpectInputError([&] { LoadSceneFile(dir.File("h.yaml")); }, "objects[0].box[2]");
   WriteText(dir.File("i.yaml"), "walls:\n  - {min: [0, 0, 0], max: [1, 0, 1]}\nobjects: []\n");
   ExpectInputError([&] { LoadSceneFile(dir.File("i.yaml")); }, "walls[0]");
+  // A key that is a list (found by fuzzing: yaml-cpp's conversion exception escaped the loader).
+  WriteText(dir.File("j.yaml"), "walls:\n  - { [m: 1]: 2, max: [3, 2, 2.5]}\nobjects: []\n");
+  ExpectInputError([&] { LoadSceneFile(dir.File("j.yaml")); }, "j.yaml: walls[0]: a key is not a name (a list or a mapping)");
+  WriteText(dir.File("k.yaml"), "[a]: 1\nobjects: []\n");
+  ExpectInputError([&] { LoadSceneFile(dir.File("k.yaml")); }, "k.yaml: top level: a key is not a name");
 }
 
 }  // namespace

@@ -310,6 +310,11 @@ ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, 
   std::vector<float> words(n_words_floats);
   r.Array(words.data(), words.size(), "vocabulary");
   db.vocabulary_ = Vocabulary(dim, std::move(words), sigma2, soft);
+  // Histogram bins are 32-bit: words x cells (the settings are validated, so NumCells() is small).
+  if (static_cast<std::uint64_t>(db.vocabulary_.num_words()) * static_cast<std::uint64_t>(s.bow.NumCells()) >
+      (std::uint64_t{1} << 31)) {
+    r.Fail("vocabulary: too many words for 32-bit histogram bins");
+  }
   const std::uint32_t num_bins = db.NumBins();
 
   const std::uint32_t n_models = r.Count(4 + 4 + 4 + 4 + 4, "models");

@@ -157,6 +157,23 @@ TEST_F(ModelDatabaseTest, RejectsCorruptTruncatedForeignAndOldFiles) {
   ExpectRejected(dir_ / "trailing.db", "trailing");
 }
 
+// Settings a file can hold but no valid database has: more height bands than the histogram's bins can
+// number (found by fuzzing: the cell count overflowed int) is a corrupt database naming the key.
+TEST_F(ModelDatabaseTest, SettingsBeyondTheirBoundsAreRejected) {
+  const fs::path path = dir_ / "bands.db";
+  const int bands = db_->settings().bow.height_bands;
+  db_->mutable_settings().bow.height_bands = 1660944386;  // Save writes settings as they are
+  db_->Save(path.string());
+  db_->mutable_settings().bow.height_bands = bands;
+  try {
+    ModelDatabase::Load(path.string());
+    ADD_FAILURE() << "loaded a database with 1660944386 height bands";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path.string() + ": corrupt model database (settings: config: "
+                                                      "recognition.bow.height_bands must be in [1, 100])");
+  }
+}
+
 TEST_F(ModelDatabaseTest, DatabaseLargerThanTheMemoryLimitIsRejectedBeforeItIsRead) {
   const fs::path good = dir_ / "good.db";
   db_->Save(good.string());

@@ -8,8 +8,14 @@
 namespace objscan::recognition {
 
 void SpatialBowOptions::Validate() const {
-  config::Require(height_bands >= 1, "recognition.bow.height_bands", "must be at least 1");
-  config::Require(radial_rings >= 1, "recognition.bow.radial_rings", "must be at least 1");
+  // Upper bounds keep NumCells() (and a histogram's bin numbers) far from int overflow.
+  config::Require(height_bands >= 1 && height_bands <= kMaxBandsOrRings, "recognition.bow.height_bands",
+                  "must be in [1, " + std::to_string(kMaxBandsOrRings) + "]");
+  config::Require(radial_rings >= 1 && radial_rings <= kMaxBandsOrRings, "recognition.bow.radial_rings",
+                  "must be in [1, " + std::to_string(kMaxBandsOrRings) + "]");
+  config::Require(absolute_height_edges_m.size() <= static_cast<std::size_t>(kMaxBandsOrRings),
+                  "recognition.bow.absolute_height_edges_m",
+                  "must have at most " + std::to_string(kMaxBandsOrRings) + " edges");
   config::RequireNonNegative("recognition.bow.spatial_weight", spatial_weight);
   for (std::size_t i = 0; i < absolute_height_edges_m.size(); ++i) {
     config::Require(i == 0 || absolute_height_edges_m[i] > absolute_height_edges_m[i - 1],

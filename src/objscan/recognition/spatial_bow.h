@@ -46,6 +46,7 @@ struct SpatialBowOptions {
     v("floor_gap_bin_m", floor_gap_bin_m);
   }
   void Validate() const;
+  static constexpr int kMaxBandsOrRings = 100;  // height bands, radial rings, absolute height edges
   int NumRelativeCells() const { return height_bands * radial_rings; }
   int NumAbsoluteCells() const { return 3 * (static_cast<int>(absolute_height_edges_m.size()) + 1); }
   int NumCells() const { return 1 + NumRelativeCells() + NumAbsoluteCells(); }
