@@ -1,7 +1,7 @@
 // `objscan db`: build, inspect and evaluate the 3D model database (paper §4.2).
 //   objscan db build --models DIR|WORLD...|procedural --out F.db   -> JSON summary on stdout
 //   objscan db info F.db                                  -> JSON counts and model sizes per category
-//   objscan db eval --db F.db [--queries procedural]      -> JSON accuracy, objectness, timing
+//   objscan db eval --db F.db [--queries procedural|DIR|WORLD...] -> JSON accuracy, objectness, timing
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -33,7 +33,7 @@ struct DbArgs {
   std::string out;
   std::string info_db;
   std::string eval_db;
-  std::string queries = "procedural";
+  std::vector<std::string> queries{"procedural"};
   int variants = 8;
   std::string sampling = "style-medoids";  // as the built-in database
   int queries_per_category = 5;
@@ -49,31 +49,38 @@ void ApplySets(const std::vector<std::string>& sets, Options* options) {
   config::Apply(raw, options);
 }
 
+// The models named by `specs` (--models of build, --queries of eval): 'procedural', a model folder, or
+// scenes (Gazebo worlds, ScanNet scans, ...) whose categorised objects are taken once per model id.
+std::vector<recognition::ModelSource> ModelSourcesFrom(const std::vector<std::string>& specs, const DbArgs& a,
+                                                       const char* option, std::vector<std::string>* skipped) {
+  std::vector<recognition::ModelSource> sources;
+  namespace fs = std::filesystem;
+  const std::string& first = specs.front();
+  if (specs.size() == 1 && first == "procedural") {
+    if (a.variants < 1) throw InputError("--variants must be at least 1");
+    sources = recognition::ProceduralModelSources(
+        a.variants, 0, recognition::ParseProceduralSampling(a.sampling, "--sampling"));
+  } else if (specs.size() == 1 && fs::is_directory(first) && !io::IsScanNetSpec(first)) {
+    sources = recognition::ModelSourcesFromFolder(first, skipped);
+  } else {
+    io::SceneLoadOptions load;
+    load.model_path = a.model_path;
+    if (!a.category_map.empty()) load.category_map = a.category_map;
+    std::vector<eval::WorldModels> worlds;
+    for (const std::string& spec : specs) worlds.push_back({spec, io::LoadScene(spec, load)});
+    sources = eval::ModelDisjointSources(worlds, worlds.size());
+    if (sources.empty()) throw InputError(std::string(option) + " " + first + ": no categorised object in the given scenes");
+  }
+  return sources;
+}
+
 int RunBuild(const DbArgs& a) {
   recognition::DatabaseBuildOptions options;
   options.threads = a.threads;
   options.seed = a.seed;
   ApplySets(a.sets, &options);
-  std::vector<recognition::ModelSource> sources;
   std::vector<std::string> skipped;
-  namespace fs = std::filesystem;
-  const std::string& first = a.models.front();
-  if (a.models.size() == 1 && first == "procedural") {
-    if (a.variants < 1) throw InputError("--variants must be at least 1");
-    sources = recognition::ProceduralModelSources(
-        a.variants, 0, recognition::ParseProceduralSampling(a.sampling, "--sampling"));
-  } else if (a.models.size() == 1 && fs::is_directory(first) && !io::IsScanNetSpec(first)) {
-    sources = recognition::ModelSourcesFromFolder(first, &skipped);
-  } else {
-    // Scenes (Gazebo worlds, ScanNet scans, ...): every categorised object model, once per model id.
-    io::SceneLoadOptions load;
-    load.model_path = a.model_path;
-    if (!a.category_map.empty()) load.category_map = a.category_map;
-    std::vector<eval::WorldModels> worlds;
-    for (const std::string& spec : a.models) worlds.push_back({spec, io::LoadScene(spec, load)});
-    sources = eval::ModelDisjointSources(worlds, worlds.size());
-    if (sources.empty()) throw InputError(first + ": no categorised object in the given scenes");
-  }
+  const std::vector<recognition::ModelSource> sources = ModelSourcesFrom(a.models, a, "--models", &skipped);
   const Stopwatch watch;
   const recognition::ModelDatabase db =
       recognition::BuildDatabase(sources, options, TerminalProgress("db build"));
@@ -127,14 +134,18 @@ int RunInfo(const DbArgs& a) {
 }
 
 int RunEval(const DbArgs& a) {
-  if (a.queries != "procedural") throw InputError("--queries '" + a.queries + "': only 'procedural' is supported");
   recognition::DatabaseEvalOptions options;
   options.queries_per_category = a.queries_per_category;
   options.threads = a.threads;
   ApplySets(a.sets, &options);
   const recognition::ModelDatabase db = recognition::ModelDatabase::Load(a.eval_db);
+  std::vector<std::string> skipped_folders;
+  const bool procedural = a.queries.size() == 1 && a.queries.front() == "procedural";
+  const std::vector<recognition::ModelSource> queries =
+      procedural ? recognition::ProceduralQuerySources(db, options)
+                 : ModelSourcesFrom(a.queries, a, "--queries", &skipped_folders);
   const recognition::DatabaseEvalResult r =
-      recognition::EvaluateDatabase(db, options, TerminalProgress("db eval"));
+      recognition::EvaluateDatabase(db, queries, options, TerminalProgress("db eval"));
   FinishProgress();
   nlohmann::json j;
   j["top1_category_accuracy"] = r.top1_category_accuracy;
@@ -156,6 +167,18 @@ int RunEval(const DbArgs& a) {
     if (q.views == 1) ++confusion[world::CategoryName(q.truth)][world::CategoryName(q.predicted)];
   }
   j["single_view_confusion"] = confusion;
+  j["query_models"] = r.query_models;
+  j["skipped_queries"] = r.skipped_queries;  // of a category the database lacks
+  j["skipped_folders"] = skipped_folders;
+  nlohmann::json per_query = nlohmann::json::array();
+  for (const auto& q : r.queries) {
+    per_query.push_back({{"model", q.model},
+                         {"views", q.views},
+                         {"truth", world::CategoryName(q.truth)},
+                         {"predicted", world::CategoryName(q.predicted)},
+                         {"top5", q.top5}});
+  }
+  j["queries"] = per_query;
   std::printf("%s\n", j.dump(2).c_str());
   return 0;
 }
@@ -185,9 +208,15 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   info->add_option("db", args->info_db, "database file")->required();
   auto* eval = cmd->add_subcommand("eval", "Evaluate retrieval accuracy and objectness on unseen models");
   eval->add_option("--db", args->eval_db, "database file")->required();
-  eval->add_option("--queries", args->queries, "query source (procedural)")->default_str("procedural");
-  eval->add_option("--queries-per-category", args->queries_per_category, "unseen models per category")
+  eval->add_option("--queries", args->queries,
+                   "query models, as --models of build: 'procedural' (unseen generator models), a DIR of "
+                   "<category>/<name>.<ext>, or scene SPECs (.world, ...: their categorised objects)")
+      ->default_str("procedural");
+  eval->add_option("--queries-per-category", args->queries_per_category,
+                   "query models per category (the first ones; 0 = all)")
       ->default_str("5");
+  eval->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs of --queries worlds");
+  eval->add_option("--category-map", args->category_map, "category map YAML for --queries worlds and scans");
   eval->add_option("--threads", args->threads, "queries run in parallel (0 = all cores)")->default_str("0");
   eval->add_option("--set", args->sets, "override an eval option, e.g. recognition.shortlist_size=30");
   cmd->require_subcommand(1);

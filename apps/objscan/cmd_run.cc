@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "objscan/common/config.h"
 #include "objscan/common/error.h"
+#include "objscan/eval/frame_writer.h"
 #include "objscan/eval/report_variants.h"
 #include "objscan/eval/run_evaluation.h"
 #include "objscan/eval/run_output.h"
@@ -43,6 +44,7 @@ struct RunArgs {
   std::string category_map;
   bool print_config = false;
   bool quiet = false;
+  bool save_frames = false;
 };
 
 constexpr int kDefaultDatabaseVariants = 8;
@@ -172,12 +174,17 @@ int RunScan(const RunArgs& args) {
 
   scanning::Scanner scanner(config, scene, database, args.seed);
   eval::RunEvaluator evaluator(scene, config, std::vector<world::Category>(known.begin(), known.end()));
-  scanner.set_frame_observer([&evaluator](const sim::DepthFrame& frame, const mapping::FrameAssociation& association) {
+  std::unique_ptr<eval::FrameWriter> frames;
+  if (args.save_frames) frames = std::make_unique<eval::FrameWriter>(args.out + "/frames");
+  scanner.set_frame_observer([&evaluator, &frames](const sim::DepthFrame& frame,
+                                                   const mapping::FrameAssociation& association) {
     evaluator.ObserveFrame(frame, association);
+    if (frames) frames->Write(frame);
   });
   scanner.set_analysis_observer([&evaluator](const scanning::Scanner& s) { evaluator.ObserveAnalysis(s); });
   scanning::RunRecord record = scanner.Run(args.quiet ? nullptr : TerminalProgress("scanning"));
   FinishProgress();
+  if (frames) frames->Finish(record);
   evaluator.AssignGroundTruthInstances(scanner, &record);
   const eval::RunMetrics metrics = evaluator.Evaluate(scanner, record);
 
@@ -226,6 +233,9 @@ void AddRunCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--category-map", args->category_map, "category map YAML (sets scene.category_map)");
   cmd->add_flag("--print-config", args->print_config, "print the effective configuration as YAML and exit");
   cmd->add_flag("--quiet", args->quiet, "no progress output on stderr");
+  cmd->add_flag("--save-frames", args->save_frames,
+                "also write every depth image to OUT/frames (TUM RGB-D layout: depth/NNNNNN.png at 5000 units "
+                "per metre, depth.txt, groundtruth.txt camera poses, intrinsics.json)");
   cmd->callback([run, args] { *run = [args] { return RunScan(*args); }; });
 }
 

@@ -8,6 +8,7 @@
 #include "objscan/eval/exposure.h"
 #include "objscan/eval/ground_truth_votes.h"
 #include "objscan/eval/observability.h"
+#include "objscan/eval/rooms.h"
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/segmentation_quality.h"
@@ -91,6 +92,9 @@ struct RunEvaluator::Impl {
   // the run, so taken once.
   std::vector<GroundTruthInstance> truth;
   std::vector<std::int32_t> structural;
+  // The scene's rooms and the room of each ground-truth instance (by its bounding box's centre).
+  RoomPartition rooms;
+  std::unordered_map<int, int> room_of_instance;
 
   // Rand Index over the reconstructed non-structural points: points outside every object keep
   // their pre-segment (negated, so ids never collide).
@@ -185,6 +189,41 @@ struct RunEvaluator::Impl {
     BuildCoverage(std::move(kept));
   }
 
+  // Recognition counts per room, from the run's outputs (with their rooms) and their matching.
+  std::vector<RoomMetrics> PerRoom(const std::vector<OutputObject>& outputs, const std::vector<int>& output_room,
+                                   const RecognitionResult& rec) const {
+    std::vector<RoomMetrics> per_room(rooms.rooms().size());
+    for (std::size_t r = 0; r < per_room.size(); ++r) {
+      per_room[r].room = rooms.rooms()[r].id;
+      per_room[r].area_m2 = rooms.rooms()[r].area_m2;
+      per_room[r].center_m = rooms.rooms()[r].center_m;
+    }
+    const std::set<int> matched(rec.matched_instances.begin(), rec.matched_instances.end());
+    for (const GroundTruthInstance& g : truth) {
+      const bool scored = IsScoredCategory(g.category) &&
+                          std::find(database_categories.begin(), database_categories.end(), g.category) !=
+                              database_categories.end();
+      const auto it = room_of_instance.find(g.instance_id);
+      if (!scored || it == room_of_instance.end() || it->second < 0) continue;
+      RecognitionCounts& k = per_room[static_cast<std::size_t>(it->second)].counts;
+      ++k.ground_truth;
+    }
+    for (std::size_t o = 0; o < outputs.size(); ++o) {
+      if (output_room[o] < 0) continue;
+      RecognitionCounts& k = per_room[static_cast<std::size_t>(output_room[o])].counts;
+      ++k.outputs;
+      if (rec.output_is_true_positive[o]) ++k.true_positives;
+    }
+    const auto with_objects = std::count_if(per_room.begin(), per_room.end(),
+                                            [](const RoomMetrics& r) { return r.counts.ground_truth > 0; });
+    if (with_objects < 2) return {};
+    // Rooms with neither ground truth nor outputs (the floor around a house) are left out.
+    per_room.erase(std::remove_if(per_room.begin(), per_room.end(),
+                                  [](const RoomMetrics& r) { return r.counts.ground_truth == 0 && r.counts.outputs == 0; }),
+                   per_room.end());
+    return per_room;
+  }
+
   Impl(const world::Scene& s, const scanning::SystemConfig& c, std::vector<world::Category> cats)
       : scene(s), config(c), database_categories(std::move(cats)), voxel_m(c.eval.coverage_voxel_size_m) {
     surface_voxels = SurfaceVoxelsOf(scene, voxel_m, c.eval.coverage_exposed_only ? &surface_normal_lines : nullptr);
@@ -199,6 +238,12 @@ struct RunEvaluator::Impl {
       g.category = o.category;
       g.on_floor = scene.ObjectBounds(o).min_m.z() < kOnFloorMaxZ_m;
       truth.push_back(g);
+    }
+    rooms = RoomPartition::FromScene(scene);
+    for (const auto& o : scene.objects()) {
+      if (o.IsStructural()) continue;
+      const Eigen::Vector3d c = scene.ObjectBounds(o).Center();
+      room_of_instance[o.instance_id] = rooms.RoomAt(c.x(), c.y());
     }
   }
 };
@@ -309,12 +354,18 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   // Output objects: complete ones, and incomplete ones recognised with enough objectness, of a scored
   // category (recognised as `other` is no output).
   std::vector<OutputObject> outputs;
+  std::vector<int> output_room;
   for (const auto& o : record.objects) {
     if (!o.category || !IsScoredCategory(*o.category)) continue;
     if (!o.complete && o.objectness < m.config.eval.recognized_min_objectness) continue;
     outputs.push_back({*o.category, o.gt_instance > 0 ? o.gt_instance : world::kNoInstance});
+    auto r = m.room_of_instance.find(o.gt_instance);
+    output_room.push_back(r != m.room_of_instance.end()
+                              ? r->second
+                              : m.rooms.RoomAt(o.T_world_model.translation().x(), o.T_world_model.translation().y()));
   }
   const RecognitionResult rec = MatchRecognitions(truth, outputs, m.database_categories);
+  out.rooms = m.PerRoom(outputs, output_room, rec);
   out.recall = rec.all.Recall();
   out.precision = rec.all.Precision();
   out.recall_floor = rec.floor.Recall();

@@ -42,6 +42,15 @@ struct CoverageVoxelOutcome {
   bool observable = true;  // a camera could measure it (eval/observability.h)
 };
 
+// Recognition in one room of the scene (eval/rooms.h): the ground-truth objects whose centre lies in
+// it, and the outputs on them (or, on background, whose model stands in it).
+struct RoomMetrics {
+  int room = 0;
+  double area_m2 = 0.0;
+  Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
+  RecognitionCounts counts;
+};
+
 struct RunMetrics {
   double recall = 0.0, precision = 0.0;
   double recall_floor = 0.0, precision_floor = 0.0;
@@ -66,6 +75,9 @@ struct RunMetrics {
   std::vector<std::pair<double, double>> coverage_per_view;
   // Rand Index of the segmentation after each analysis: (views seen, rand index), for Fig. 10b.
   std::vector<std::pair<int, double>> rand_index_per_view;
+  // Per room, when the scene has two or more rooms holding ground-truth objects (a house); objects
+  // in no room (outside the partitioned floor) count in no room.
+  std::vector<RoomMetrics> rooms;
 };
 
 class RunEvaluator {

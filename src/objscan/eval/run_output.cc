@@ -172,6 +172,20 @@ std::string RunJson(const RunOutputInputs& in) {
           Json{{"ground_truth", k.ground_truth}, {"outputs", k.outputs}, {"true_positives", k.true_positives}};
     }
     metrics["per_category"] = per_category;
+    if (!m.rooms.empty()) {
+      Json rooms = Json::array();
+      for (const RoomMetrics& r : m.rooms) {
+        rooms.push_back(Json{{"room", r.room},
+                             {"area_m2", r.area_m2},
+                             {"center_m", {r.center_m.x(), r.center_m.y()}},
+                             {"ground_truth", r.counts.ground_truth},
+                             {"outputs", r.counts.outputs},
+                             {"true_positives", r.counts.true_positives},
+                             {"recall", r.counts.Recall()},
+                             {"precision", r.counts.Precision()}});
+      }
+      metrics["rooms"] = rooms;
+    }
     Json instances = Json::array();
     for (const auto& o : m.instances) {
       instances.push_back(Json{{"instance", o.instance},

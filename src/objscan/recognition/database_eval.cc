@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <string>
 
 #include "objscan/common/error.h"
 #include "objscan/common/rng.h"
@@ -15,7 +16,7 @@
 namespace objscan::recognition {
 
 void DatabaseEvalOptions::Validate() const {
-  config::Require(queries_per_category >= 1, "recognition.eval.queries_per_category", "must be at least 1");
+  config::Require(queries_per_category >= 0, "recognition.eval.queries_per_category", "must be >= 0 (0 = all)");
   config::Require(objectness_models_per_category >= 0, "recognition.eval.objectness_models_per_category",
                   "must be >= 0");
   config::RequireInRange("recognition.eval.min_elevation_deg", min_elevation_deg, -30.0, 89.0);
@@ -51,33 +52,67 @@ geometry::PointCloud ScanViews(const geometry::TriangleMesh& mesh, int n_views, 
 
 }  // namespace
 
-DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const DatabaseEvalOptions& options,
-                                    const ProgressCallback& progress) {
-  options.Validate();
-  const Recognizer recognizer(database, options.recognition);
-  std::vector<world::Category> categories;
+std::vector<ModelSource> ProceduralQuerySources(const ModelDatabase& database, const DatabaseEvalOptions& options) {
+  std::vector<ModelSource> sources;
   for (world::Category c : world::procedural::FurnitureCategories()) {
     const bool in_db = std::any_of(database.models().begin(), database.models().end(),
                                    [c](const DatabaseModel& m) { return m.category == c; });
-    if (in_db) categories.push_back(c);
+    if (!in_db) continue;
+    // 0 (all) means the default five: the generator has no end.
+    const int n = options.queries_per_category > 0 ? options.queries_per_category : 5;
+    for (int q = 0; q < n; ++q) {
+      const std::uint64_t seed = world::procedural::DatabaseModelSeed(options.first_query_index + q);
+      ModelSource s;
+      s.category = c;
+      s.name = std::string(world::CategoryName(c)) + "/query_" + std::to_string(q);
+      s.source = "procedural/" + std::string(world::CategoryName(c)) + "/" + std::to_string(seed);
+      s.load_mesh = [c, seed] { return world::procedural::GenerateFurniture(c, seed).mesh; };
+      sources.push_back(std::move(s));
+    }
   }
-  if (categories.empty()) throw InputError("db eval: the database has no category the procedural generator makes");
+  if (sources.empty()) throw InputError("db eval: the database has no category the procedural generator makes");
+  return sources;
+}
+
+DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const DatabaseEvalOptions& options,
+                                    const ProgressCallback& progress) {
+  options.Validate();
+  return EvaluateDatabase(database, ProceduralQuerySources(database, options), options, progress);
+}
+
+DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::vector<ModelSource>& queries,
+                                    const DatabaseEvalOptions& options, const ProgressCallback& progress) {
+  options.Validate();
+  const Recognizer recognizer(database, options.recognition);
+  DatabaseEvalResult out;
+  std::vector<const ModelSource*> sources;
+  std::map<world::Category, int> taken;
+  for (const ModelSource& s : queries) {
+    const bool in_db = std::any_of(database.models().begin(), database.models().end(),
+                                   [&s](const DatabaseModel& m) { return m.category == s.category; });
+    if (!in_db) {
+      out.skipped_queries.push_back(s.name);
+      continue;
+    }
+    if (options.queries_per_category > 0 && taken[s.category] >= options.queries_per_category) continue;
+    ++taken[s.category];
+    sources.push_back(&s);
+  }
+  if (sources.empty()) throw InputError("db eval: no query model of a category the database holds");
+  out.query_models = static_cast<int>(sources.size());
 
   const int workers = sim::ResolveThreadCount(options.threads);
   VirtualScanOptions scan = options.scan;
   if (workers > 1) scan.sensor.threads = 1;
 
-  // Recognition queries: (category, index, views).
+  // Recognition queries: (source, views).
   struct Task {
-    world::Category category;
-    int index;
+    const ModelSource* source;
     int views;
   };
   std::vector<Task> tasks;
-  for (world::Category c : categories) {
-    for (int q = 0; q < options.queries_per_category; ++q) {
-      for (int views : {1, 3}) tasks.push_back({c, q, views});
-    }
+  for (const ModelSource* s : sources) {
+    for (int views : {1, 3}) tasks.push_back({s, views});
   }
   // Objectness tasks: database models scanned afresh.
   std::vector<int> objectness_models;
@@ -108,9 +143,9 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const Databas
     TaskResult& r = results[t];
     if (t < n_tasks) {
       const Task& task = tasks[t];
-      const std::uint64_t seed = world::procedural::DatabaseModelSeed(options.first_query_index + task.index);
+      // Normalised as the database builder normalises its models (metres, standing on z = 0).
       const geometry::TriangleMesh mesh = RandomlyPlaced(
-          NormalizeModel(world::procedural::GenerateFurniture(task.category, seed).mesh, 1.0), &rng);
+          NormalizeModel(task.source->load_mesh(), TypicalHeight(task.source->category)), &rng);
       const geometry::PointCloud surface =
           ScanViews(mesh, task.views, geometry::DegToRad(options.multi_view_step_deg), options, scan, &rng);
       const Stopwatch watch;
@@ -119,8 +154,8 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const Databas
       r.ms = watch.ElapsedMs();
       if (!similar.empty()) {
         r.predicted = database.entries()[similar.front().entry].category;
-        r.top1 = r.predicted == task.category;
-        for (const auto& s : similar) r.top5 = r.top5 || database.entries()[s.entry].category == task.category;
+        r.top1 = r.predicted == task.source->category;
+        for (const auto& s : similar) r.top5 = r.top5 || database.entries()[s.entry].category == task.source->category;
       }
     } else {
       const DatabaseModel& model = database.models()[objectness_models[t - n_tasks]];
@@ -145,7 +180,6 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const Databas
     ReportProgress(progress, static_cast<double>(done) / n_total, "query");
   });
 
-  DatabaseEvalResult out;
   double ms_sum = 0.0;
   for (int views : {1, 3}) {
     ViewCountAccuracy acc;
@@ -156,7 +190,7 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const Databas
       acc.top1_category_accuracy += results[t].top1 ? 1.0 : 0.0;
       acc.top5_category_accuracy += results[t].top5 ? 1.0 : 0.0;
       ms_sum += results[t].ms;
-      out.queries.push_back({tasks[t].category, results[t].predicted, views, results[t].top5});
+      out.queries.push_back({tasks[t].source->category, results[t].predicted, views, results[t].top5, tasks[t].source->name});
     }
     acc.top1_category_accuracy /= std::max(1, acc.queries);
     acc.top5_category_accuracy /= std::max(1, acc.queries);

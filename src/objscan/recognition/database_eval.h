@@ -1,12 +1,14 @@
 #pragma once
-// Evaluation of a model database (`objscan db eval`): recognition of unseen procedural models from
-// one and from three views (category accuracy of the best and of the n_s retrieved full models), and
-// the objectness of database models scanned afresh, completely and from one view.
+// Evaluation of a model database (`objscan db eval`): recognition of unseen models (procedural ones,
+// or the user's own: a model folder, the models of worlds) from one and from three views (category
+// accuracy of the best and of the n_s retrieved full models), and the objectness of database models
+// scanned afresh, completely and from one view.
 #include <cstdint>
 #include <vector>
 
 #include "objscan/common/config.h"
 #include "objscan/common/progress.h"
+#include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/recognition/recognizer.h"
 #include "objscan/recognition/virtual_scan.h"
@@ -14,6 +16,7 @@
 namespace objscan::recognition {
 
 struct DatabaseEvalOptions {
+  // At most this many query models of each category (the first ones of the given sources); 0 = all.
   int queries_per_category = 5;
   // Unseen models are DatabaseModelSeed(first_query_index + k): far beyond any database build's
   // indices, and never a procedural scene's model.
@@ -66,12 +69,26 @@ struct DatabaseEvalResult {
     world::Category predicted = world::Category::kOther;
     int views = 1;
     bool top5 = false;
+    std::string model;  // the query's ModelSource::name
   };
   std::vector<Query> queries;
+  // Query sources left out because the database has no model of their category, and the number of
+  // query models evaluated (each from 1 and from 3 views).
+  std::vector<std::string> skipped_queries;
+  int query_models = 0;
 };
 
-// Only categories of the database that the procedural generator makes are queried; throws
-// InputError when there is none.
+// The procedural query models: for each furniture category of the database, queries_per_category
+// unseen models (DatabaseModelSeed(first_query_index + k)).
+std::vector<ModelSource> ProceduralQuerySources(const ModelDatabase& database, const DatabaseEvalOptions& options);
+
+// Recognizes each query source (normalised like a database model, placed at a random yaw and offset,
+// scanned with the database's virtual scanner) against `database`. Sources of a category the database
+// lacks are skipped (listed in the result); throws InputError when no query is left.
+DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::vector<ModelSource>& queries,
+                                    const DatabaseEvalOptions& options, const ProgressCallback& progress = nullptr);
+
+// The same on ProceduralQuerySources(database, options).
 DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const DatabaseEvalOptions& options,
                                     const ProgressCallback& progress = nullptr);
 

@@ -227,6 +227,10 @@ void PostSegmenter::MergeAdjacentObjects(const PostSegmenterInput& input, const 
       const double fp = MaxObjectness(GroupMatches(input, mp, nullptr));
       const double fq = MaxObjectness(GroupMatches(input, mq, nullptr));
       const double fpq = MaxObjectness(GroupMatches(input, unions[objs.size() + k], nullptr));
+      // With keep_larger_fit, the union must explain the larger part no worse than the larger
+      // part's own model does: a well-explained object (0.94) does not absorb a badly explained
+      // neighbour (0.83) because the neighbour's points gain more than its own lose.
+      if (options_.object_merge_keep_larger_fit && fpq < (np >= nq ? fp : fq)) continue;
       const double gain = fpq - (np * fp + nq * fq) / std::max(1e-12, np + nq);
       if (gain > best_gain) {
         best_gain = gain;

@@ -65,11 +65,18 @@ struct PostSegmenterOptions {
   // full-model objectness exceeds the point-weighted mean of theirs by at least object_merge_min_gain.
   // Pairwise component tests miss objects of three or more parts, and a small fragment scores high
   // against a small model (a lamp's stem as a radio), which blocks every pairwise merge with it.
-  // false = the paper (objects are the graph cut's groups). A gain of 0.03 keeps a small object off a
-  // large neighbour, whose objectness a small addition barely moves (measured on procedural rooms,
-  // docs/results/procedural-3seeds-2026-11-21-start-fix-object-merge.md).
+  // false = the paper (objects are the graph cut's groups). A gain of 0 merges whenever the union
+  // explains the points at least as well as its parts: on real furniture a piece (a desk's half, a
+  // sofa's cushion) rarely reaches a model's objectness alone, and a positive gain left those pieces
+  // apart, each becoming an object of interest of its own (OASC dev: precision +7-8 points, NBOs
+  // -25%; docs/results/oasc-dev-2026-11-26-loop-objects-of-interest.md).
   bool merge_objects = true;
-  double object_merge_min_gain = 0.03;
+  double object_merge_min_gain = 0.0;
+  // And the union's objectness must be at least that of its larger part (by points): a
+  // well-explained object does not absorb a badly explained neighbour. Off: on the OASC dev rooms it
+  // blocks more useful merges than harmful ones (built-in database precision 34.2 -> 30.6, NBOs
+  // 37.6 -> 48.5; docs/results/oasc-dev-2026-11-26-loop-objects-of-interest.md).
+  bool object_merge_keep_larger_fit = false;
   AlphaExpansionOptions alpha_expansion;
 
   template <class V>
@@ -85,6 +92,7 @@ struct PostSegmenterOptions {
     v("gain_reference", gain_reference);
     v("merge_objects", merge_objects);
     v("object_merge_min_gain", object_merge_min_gain);
+    v("object_merge_keep_larger_fit", object_merge_keep_larger_fit);
     v("alpha_expansion", alpha_expansion);
   }
   void Validate() const;

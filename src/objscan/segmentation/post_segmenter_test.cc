@@ -341,6 +341,29 @@ TEST(PostSegmenterTest, MergingAdjacentObjectsJoinsAPieceMealLampButNotItsNightS
   EXPECT_EQ(PostSegmenter(options, &matcher).Update(input).objects.size(), 4u);
 }
 
+// A bed fully seen (components 1-4, F = 0.98) beside a fifth of a wardrobe (component 5, the rest of
+// it unseen: F = 0.98 / 5), with as many points each. Their union is 4/5 of the bed (F = 0.98 *
+// 0.8^2 = 0.63): above the point-weighted mean of the two (0.59), so the mean alone would merge
+// them, but the bed's own points are explained worse by it than by the bed alone.
+TEST(PostSegmenterTest, MergingKeepsAWellExplainedObjectOffABadlyExplainedNeighbour) {
+  FakeMatcher matcher({{{1, 2, 3, 4}, Category::kBed, 1}, {{5, 6, 7, 8, 9}, Category::kShelves, 2}});
+  PostSegmenterInput input = MakeInput({1, 2, 3, 4, 5}, {{1, 2}, {2, 3}, {3, 4}, {4, 5}});
+  const std::size_t points[] = {250, 250, 250, 250, 1000};
+  for (std::size_t i = 0; i < 5; ++i) input.components[i].num_points = points[i];
+  PostSegmenterOptions options;
+  options.object_merge_min_gain = 0.0;
+  options.object_merge_keep_larger_fit = false;
+  const PostSegmentation mean_only = PostSegmenter(options, &matcher).Update(input);
+  ASSERT_EQ(mean_only.objects.size(), 1u) << "the weighted mean alone merges them";
+  options.object_merge_keep_larger_fit = true;
+  const PostSegmentation kept = PostSegmenter(options, &matcher).Update(input);
+  ASSERT_EQ(kept.objects.size(), 2u);
+  EXPECT_EQ(kept.objects[0].component_ids, (std::vector<std::int32_t>{1, 2, 3, 4}));
+  EXPECT_EQ(kept.objects[0].category, Category::kBed);
+  EXPECT_EQ(kept.objects[1].component_ids, (std::vector<std::int32_t>{5}));
+  EXPECT_EQ(kept.stats.object_merges, 0);
+}
+
 TEST(PostSegmenterTest, NoiseAndCompleteThresholds) {
   // Object A {1,2} fully seen (0.98: complete); object B {3,4,5} seen as one of three parts
   // (0.98/3: partial); component 9 matches nothing, neither alone nor with its neighbour 2 (none
@@ -565,7 +588,7 @@ TEST(PostSegmenterTest, OptionsListEveryField) {
   EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
                                             "split_instances", "graph_cuts", "smoothness", "smoothness_scale",
                                             "merge_min_gain", "gain_reference", "merge_objects",
-                                            "object_merge_min_gain", "alpha_expansion.max_sweeps",
+                                            "object_merge_min_gain", "object_merge_keep_larger_fit", "alpha_expansion.max_sweeps",
                                             "alpha_expansion.min_improvement"}));
 }
 

@@ -1,0 +1,86 @@
+#include "objscan/recognition/database_eval.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "objscan/common/error.h"
+#include "objscan/world/procedural/procedural.h"
+
+namespace objscan::recognition {
+namespace {
+
+// Fewer views and a small vocabulary keep the build to seconds.
+DatabaseBuildOptions FastBuildOptions() {
+  DatabaseBuildOptions options;
+  options.scan.ring_elevations_deg = {20.0, 55.0};
+  options.scan.ring_views = {6.0, 3.0};
+  options.vocabulary.num_words = 32;
+  options.vocabulary.max_training_descriptors = 5000;
+  return options;
+}
+
+std::vector<ModelSource> SourcesOf(std::initializer_list<world::Category> categories) {
+  std::vector<ModelSource> out;
+  for (const ModelSource& s : ProceduralModelSources(1)) {
+    if (std::find(categories.begin(), categories.end(), s.category) != categories.end()) out.push_back(s);
+  }
+  return out;
+}
+
+DatabaseEvalOptions FastEvalOptions() {
+  DatabaseEvalOptions options;
+  options.scan = FastBuildOptions().scan;
+  options.objectness_models_per_category = 0;
+  options.threads = 2;
+  return options;
+}
+
+// The user's own models as queries: a database recognizes fresh scans of the very models it holds
+// (a chair and a bed, as different as furniture gets), and a query of a category it lacks is skipped
+// by name rather than counted as a miss.
+TEST(DatabaseEvalTest, OwnModelsAreRecognizedAndUnknownCategoriesSkipped) {
+  const ModelDatabase db = BuildDatabase(SourcesOf({world::Category::kChair, world::Category::kBed}), FastBuildOptions());
+  const std::vector<ModelSource> queries =
+      SourcesOf({world::Category::kChair, world::Category::kBed, world::Category::kSofa});
+  ASSERT_EQ(queries.size(), 3u);
+
+  const DatabaseEvalResult r = EvaluateDatabase(db, queries, FastEvalOptions());
+  EXPECT_EQ(r.query_models, 2);
+  ASSERT_EQ(r.skipped_queries.size(), 1u);
+  EXPECT_EQ(r.skipped_queries[0], SourcesOf({world::Category::kSofa})[0].name);
+  ASSERT_EQ(r.by_views.size(), 2u);
+  EXPECT_EQ(r.by_views[0].queries, 2);
+  EXPECT_EQ(r.by_views[1].queries, 2);
+  EXPECT_DOUBLE_EQ(r.by_views[1].top1_category_accuracy, 1.0) << "three views of a model the database holds";
+  ASSERT_EQ(r.queries.size(), 4u);
+  for (const auto& q : r.queries) {
+    EXPECT_TRUE(q.model == queries[0].name || q.model == queries[1].name) << q.model;
+    EXPECT_TRUE(q.top5) << q.model << ": both categories are among the retrieved";
+  }
+
+  // Same seed, same answers, whatever the thread count.
+  DatabaseEvalOptions one_thread = FastEvalOptions();
+  one_thread.threads = 1;
+  const DatabaseEvalResult again = EvaluateDatabase(db, queries, one_thread);
+  ASSERT_EQ(again.queries.size(), r.queries.size());
+  for (std::size_t i = 0; i < r.queries.size(); ++i) {
+    EXPECT_EQ(again.queries[i].predicted, r.queries[i].predicted);
+    EXPECT_EQ(again.queries[i].model, r.queries[i].model);
+  }
+
+  // At most queries_per_category per category: the first one of each.
+  DatabaseEvalOptions capped = FastEvalOptions();
+  std::vector<ModelSource> doubled = queries;
+  doubled.insert(doubled.end(), queries.begin(), queries.end());
+  capped.queries_per_category = 1;
+  EXPECT_EQ(EvaluateDatabase(db, doubled, capped).query_models, 2);
+  capped.queries_per_category = 0;
+  EXPECT_EQ(EvaluateDatabase(db, doubled, capped).query_models, 4);
+
+  // Nothing the database can answer: one error, not an empty success.
+  EXPECT_THROW(EvaluateDatabase(db, SourcesOf({world::Category::kSofa}), FastEvalOptions()), InputError);
+}
+
+}  // namespace
+}  // namespace objscan::recognition
