@@ -12,8 +12,10 @@
 # A crash, timeout or out-of-memory is written to build-fuzz/findings/TARGET/ and fails the script;
 # replay one with build-fuzz/fuzz/fuzz_TARGET FILE. Each run prints one summary line (executions,
 # seconds, libFuzzer's cov: and ft: figures) and keeps libFuzzer's log in build-fuzz/logs/TARGET.log.
-# Environment: FUZZ_TIMEOUT_S (per input, default 10), FUZZ_RSS_MB (default 2048), FUZZ_MAX_LEN
-# (bytes, default 8192), OBJSCAN_JOBS (build jobs, default every core).
+# Environment: FUZZ_TIMEOUT_S (wall s per input, default 10), FUZZ_RSS_MB (default 2048), FUZZ_MAX_LEN
+# (bytes, default 8192), FUZZ_MAX_TOTAL_TIME_S (stop a target after this long, default 0: no limit),
+# OBJSCAN_JOBS (build jobs, default every core). libFuzzer's slow-unit-* files (inputs that took over
+# 10 s of wall time without timing out) are kept beside the findings but are not findings.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -22,7 +24,7 @@ targets=(gazebo_world scene_file ply model_database config scannet)
 jobs=${OBJSCAN_JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 usage() {
-  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 }
 
@@ -51,7 +53,7 @@ run_target() {
   ASAN_OPTIONS="halt_on_error=1:detect_leaks=1" UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
   LSAN_OPTIONS="suppressions=${root}/scripts/sanitizers/lsan.supp:print_suppressions=0" \
     "${binary}" -runs="${execs}" -timeout="${FUZZ_TIMEOUT_S:-10}" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
-      -max_len="${FUZZ_MAX_LEN:-8192}" "${dict[@]}" -print_final_stats=1 -artifact_prefix="${build}/findings/${target}/" \
+      -max_len="${FUZZ_MAX_LEN:-8192}" -max_total_time="${FUZZ_MAX_TOTAL_TIME_S:-0}" "${dict[@]}" -print_final_stats=1 -artifact_prefix="${build}/findings/${target}/" \
       "${build}/corpus/${target}" "${root}/fuzz/corpus/${target}" >"${log}" 2>&1 || status=$?
   end=$(date +%s.%N)
   local done_line cov ft runs
@@ -60,7 +62,7 @@ run_target() {
   ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"${done_line}")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "${log}" | tail -1)
   local findings
-  findings=$(find "${build}/findings/${target}" -type f | wc -l)
+  findings=$(find "${build}/findings/${target}" -type f ! -name 'slow-unit-*' | wc -l)
   printf 'fuzz %-15s executions %-9s seconds %-8s cov %-6s ft %-6s findings %s%s\n' "${target}" "${runs:-?}" \
          "$(awk -v a="${start}" -v b="${end}" 'BEGIN { printf "%.1f", b - a }')" "${cov:-?}" "${ft:-?}" "${findings}" \
          "$([[ ${status} -ne 0 ]] && echo "  FAILED (exit ${status}; see ${log})")"
