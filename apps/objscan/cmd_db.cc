@@ -172,11 +172,22 @@ int RunEval(const DbArgs& a) {
   j["skipped_folders"] = skipped_folders;
   nlohmann::json per_query = nlohmann::json::array();
   for (const auto& q : r.queries) {
+    nlohmann::json retrieved = nlohmann::json::array();
+    for (const auto& m : q.retrieved) {
+      retrieved.push_back({{"model", m.model},
+                           {"category", world::CategoryName(m.category)},
+                           {"rank_score", m.rank_score},
+                           {"bow", m.bow},
+                           {"fit", m.fit},
+                           {"objectness", m.objectness},
+                           {"visible_objectness", m.visible_objectness}});
+    }
     per_query.push_back({{"model", q.model},
                          {"views", q.views},
                          {"truth", world::CategoryName(q.truth)},
                          {"predicted", world::CategoryName(q.predicted)},
-                         {"top5", q.top5}});
+                         {"top5", q.top5},
+                         {"retrieved", retrieved}});
   }
   j["queries"] = per_query;
   std::printf("%s\n", j.dump(2).c_str());
