@@ -180,7 +180,10 @@ int RunEval(const DbArgs& a) {
                            {"bow", m.bow},
                            {"fit", m.fit},
                            {"objectness", m.objectness},
-                           {"visible_objectness", m.visible_objectness}});
+                           {"visible_objectness", m.visible_objectness},
+                           {"query_inliers", m.query_inliers},
+                           {"model_inliers", m.model_inliers},
+                           {"fscore", m.fscore}});
     }
     per_query.push_back({{"model", q.model},
                          {"views", q.views},

@@ -161,7 +161,8 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
       for (const SimilarModel& s : similar) {
         const DatabaseEntry& e = database.entries()[s.entry];
         r.retrieved.push_back({e.name, e.category, s.rank_score, s.bow_score, s.fit,
-                               s.objectness.objectness, s.visible_objectness});
+                               s.objectness.objectness, s.visible_objectness, s.query_inliers, s.model_inliers,
+                               s.fscore});
       }
     } else {
       const DatabaseModel& model = database.models()[objectness_models[t - n_tasks]];

@@ -73,6 +73,9 @@ struct DatabaseEvalResult {
     double fit = 0.0;                 // exp(-sqrt(d(c, m)) / Diag(c))
     double objectness = 0.0;          // eq. (1)
     double visible_objectness = 0.0;  // eq. (1), completeness over sensor-facing entry keypoints
+    double query_inliers = 0.0;       // SimilarModel::query_inliers, model_inliers, fscore
+    double model_inliers = 0.0;
+    double fscore = 0.0;
   };
   // Per query: true and predicted category, for confusion analysis, and M(c).
   struct Query {
