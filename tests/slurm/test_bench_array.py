@@ -28,7 +28,7 @@ SKIP = 77
 SUITE_ARGS = ["--suite", "procedural", "--seeds", "1", "--methods", "ours", "--set", "scanner.max_steps=2"]
 SHARDS = 3
 # Fields of run.json and results.json that depend on the machine's speed and load, or on the folder.
-VOLATILE = {"timing_s", "timing_ms", "peak_rss_mb", "cpu_s", "compute_s", "table3", "wall_s", "seconds"}
+VOLATILE = {"timing_s", "timing_ms", "peak_rss_mb", "cpu_s", "compute_s", "table3", "wall_s", "seconds", "resources"}
 
 
 def skip(why):
