@@ -191,6 +191,10 @@ def main():
         ok = True
         return 0
     finally:
+        # Jobs still running (a timeout) are cancelled before the daemons stop, so no job step outlives them.
+        if daemons and daemons[0][1].poll() is None:
+            subprocess.run(["scancel", "--partition", "objscan"], env=env, capture_output=True, timeout=60)
+            time.sleep(2)
         for name, p in reversed(daemons):
             if p.poll() is None:
                 p.terminate()
