@@ -11,6 +11,10 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # objscan view bundles three.js into view.html; its test screenshots the page in headless Chromium.
   libjs-three chromium
+  # The Python module (python/, pybind11) for the system python3, and numpy for its arrays.
+  pybind11-dev python3-dev python3-numpy
+  # scripts/slurm/bench_array.sh is tested on a one-node cluster the test starts (slurmctld + slurmd).
+  slurm-wlm
 )
 if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then
   packages+=(libopen3d-dev)
