@@ -193,17 +193,15 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   const Eigen::Affine3f T = m->alignment.T_item_query.cast<float>();
   const double tau = std::max(options_.inlier_tolerance_m, options_.inlier_tolerance_fraction * diag);
   const float tau2 = static_cast<float>(tau * tau);
-  // Always measured (one nearest-neighbour pass, a small part of the alignment's cost): M(c) reports it.
-  const bool inliers = true;
+  // The query's inliers are always counted (one nearest-neighbour pass, a small part of the
+  // alignment's cost): M(c) reports P, R and F whatever the rank weights.
   double sum = 0.0;
   int query_inliers = 0;
-  if (!refined || inliers) {
-    for (const auto& p : points) {
-      float d2 = 0.f;
-      target.tree().Nearest(T * p, &d2);
-      sum += d2;
-      if (d2 <= tau2) ++query_inliers;
-    }
+  for (const auto& p : points) {
+    float d2 = 0.f;
+    target.tree().Nearest(T * p, &d2);
+    sum += d2;
+    if (d2 <= tau2) ++query_inliers;
   }
   o.similarity_m2 = refined ? m->alignment.mean_squared_distance_m2 : sum / static_cast<double>(points.size());
   // d(m, c): entry keypoints mapped into the query frame (distances there are 1/scale of the entry
@@ -249,19 +247,17 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
       if (e.keypoint_normals[k].dot(view_item) <= options_.visible_min_cos) continue;
       visible_sum += model_d2[k];
       ++n;
-      if (inliers) count_inlier(k);
+      count_inlier(k);
     }
     if (n > 0) m->visible_objectness = std::exp(-std::sqrt(o.similarity_m2 + visible_sum / n) / diag);
   }
-  if (inliers && model_counted == 0) {
+  if (model_counted == 0) {
     for (std::size_t k = 0; k < n_model; ++k) count_inlier(k);
   }
-  if (inliers) {
-    m->query_inliers = static_cast<double>(query_inliers) / static_cast<double>(points.size());
-    m->model_inliers = model_counted > 0 ? static_cast<double>(model_inliers) / model_counted : 0.0;
-    const double pr = m->query_inliers + m->model_inliers;
-    m->fscore = pr > 0.0 ? 2.0 * m->query_inliers * m->model_inliers / pr : 0.0;
-  }
+  m->query_inliers = static_cast<double>(query_inliers) / static_cast<double>(points.size());
+  m->model_inliers = model_counted > 0 ? static_cast<double>(model_inliers) / model_counted : 0.0;
+  const double pr = m->query_inliers + m->model_inliers;
+  m->fscore = pr > 0.0 ? 2.0 * m->query_inliers * m->model_inliers / pr : 0.0;
   m->support_factor = 1.0;
   if (space != nullptr && options_.support_height_tolerance_m > 0.0) {
     if (const std::optional<double> floor = space->FloorHeight()) {
