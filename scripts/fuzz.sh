@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
 # Builds objscan's libFuzzer targets (clang, -DOBJSCAN_FUZZ=ON: -fsanitize=fuzzer,address,undefined)
-# into build-fuzz/ and runs them. See fuzz/fuzz_input.h for the targets and docs/reliability.md.
+# into build-sanitize/, the sanitizer pass's folder (scripts/sanitizers/configure.sh), and runs them.
+# See fuzz/fuzz_input.h for the targets and docs/reliability.md.
 #
 #   scripts/fuzz.sh TARGET [EXECS]   run one target for EXECS executions (default 10000)
 #   scripts/fuzz.sh --all [EXECS]    every target in turn (what CI runs, with the default)
 #   scripts/fuzz.sh --build          build only
 #
 # Targets: gazebo_world scene_file ply model_database config scannet.
-# Seeds: fuzz/corpus/TARGET/ (read only); what the fuzzer adds: build-fuzz/corpus/TARGET/;
+# Seeds: fuzz/corpus/TARGET/ (read only); what the fuzzer adds: build-sanitize/corpus/TARGET/;
 # a dictionary of the format's words, where there is one: fuzz/dict/TARGET.dict.
-# A crash, timeout or out-of-memory is written to build-fuzz/findings/TARGET/ and fails the script;
-# replay one with build-fuzz/fuzz/fuzz_TARGET FILE. Each run prints one summary line (executions,
-# seconds, libFuzzer's cov: and ft: figures) and keeps libFuzzer's log in build-fuzz/logs/TARGET.log.
+# A crash, timeout or out-of-memory is written to build-sanitize/findings/TARGET/ and fails the script;
+# replay one with build-sanitize/fuzz/fuzz_TARGET FILE. Each run prints one summary line (executions,
+# seconds, libFuzzer's cov: and ft: figures) and keeps libFuzzer's log in build-sanitize/logs/TARGET.log.
 # Environment: FUZZ_TIMEOUT_S (wall s per input, default 10), FUZZ_RSS_MB (default 2048), FUZZ_MAX_LEN
 # (bytes, default 8192), FUZZ_MAX_TOTAL_TIME_S (stop a target after this long, default 0: no limit),
 # OBJSCAN_JOBS (build jobs, default every core). libFuzzer's slow-unit-* files (inputs that took over
@@ -19,12 +20,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-build=${root}/build-fuzz
+build=${root}/build-sanitize
 targets=(gazebo_world scene_file ply model_database config scannet)
 jobs=${OBJSCAN_JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 usage() {
-  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 }
 
@@ -33,8 +34,7 @@ build_fuzzers() {
     echo "fuzz.sh: clang++ not found: run scripts/install_deps.sh" >&2
     exit 1
   fi
-  cmake -S . -B "${build}" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-        -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOBJSCAN_FUZZ=ON -DOBJSCAN_BUILD_TESTS=OFF -DOBJSCAN_BUILD_BENCH=OFF >/dev/null
+  ./scripts/sanitizers/configure.sh "${build}" >/dev/null
   cmake --build "${build}" --target objscan_fuzzers -j"${jobs}"
 }
 

@@ -339,4 +339,34 @@ TEST(RunE2eTest, CoverageViewsFollowThePapersLoopAndAddToWhatWasSeen) {
   EXPECT_GT(b["metrics"]["coverage_visible_rate"].get<double>(), a["metrics"]["coverage_visible_rate"].get<double>());
 }
 
+// The step budget is min(max_steps, max(step_budget, steps_per_explored_m2 x explored area)): with
+// a budget of one step and 0.2 steps per m2 the run gets as many steps as a fifth of the area it
+// explored, and max_steps caps that whatever the area.
+TEST(RunE2eTest, StepBudgetGrowsWithTheExploredAreaUpToMaxSteps) {
+  fs::path dir;
+  const std::string db = ScratchWithSmallDatabase("objscan_run_e2e_budget", &dir);
+  ASSERT_FALSE(db.empty());
+  const std::string common = "run --scene procedural:bedroom:2 --db " + db +
+                             " --seed 5 --quiet --set scanner.step_budget=1 --set scanner.steps_per_explored_m2=0.2 ";
+
+  const Result a = RunObjscan(common + "--set scanner.max_steps=40 --out " + (dir / "by_area").string());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const nlohmann::json run = ReadJson(dir / "by_area" / "run.json");
+  const double area_m2 = run["explored_area_m2"].get<double>();
+  const int budget = run["step_budget"].get<int>();
+  EXPECT_GT(area_m2, 8.0) << "a procedural bedroom and what the look-around shows of it";
+  EXPECT_LT(area_m2, 200.0);
+  EXPECT_NEAR(budget, 0.2 * area_m2, 1.0);
+  EXPECT_GE(budget, 2) << "more than step_budget: the area added steps";
+  ASSERT_EQ(run["terminated"], "max_steps") << "a few steps do not finish a bedroom";
+  EXPECT_EQ(static_cast<int>(run["steps"].size()), budget);
+
+  const Result b = RunObjscan(common + "--set scanner.max_steps=2 --out " + (dir / "capped").string());
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const nlohmann::json capped = ReadJson(dir / "capped" / "run.json");
+  EXPECT_EQ(capped["step_budget"].get<int>(), 2);
+  EXPECT_EQ(capped["steps"].size(), 2u);
+  EXPECT_EQ(capped["terminated"], "max_steps");
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "objscan/common/error.h"
+#include "objscan/recognition/default_database.h"
 
 namespace objscan::app {
 namespace {
@@ -33,15 +34,7 @@ void FinishProgress() {
 }
 
 std::uint64_t DatabaseMemoryLimitBytes(double max_database_memory_mb) {
-  if (max_database_memory_mb > 0.0) return static_cast<std::uint64_t>(max_database_memory_mb * 1024.0 * 1024.0);
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  std::uint64_t kib = 0;
-  std::string unit;
-  while (meminfo >> key >> kib >> unit) {
-    if (key == "MemAvailable:") return kib * 1024;
-  }
-  return 0;
+  return recognition::DatabaseMemoryLimitBytes(max_database_memory_mb);
 }
 
 PoseArg ParsePoseArg(const std::string& text, const std::string& option_name) {

@@ -2,6 +2,7 @@
 //   objscan db build --models DIR|WORLD...|procedural --out F.db   -> JSON summary on stdout
 //   objscan db info F.db                                  -> JSON counts and model sizes per category
 //   objscan db eval --db F.db [--queries procedural|DIR|WORLD...] -> JSON accuracy, objectness, timing
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -49,28 +50,43 @@ void ApplySets(const std::vector<std::string>& sets, Options* options) {
   config::Apply(raw, options);
 }
 
-// The models named by `specs` (--models of build, --queries of eval): 'procedural', a model folder, or
-// scenes (Gazebo worlds, ScanNet scans, ...) whose categorised objects are taken once per model id.
+// The models named by `specs` (--models of build, --queries of eval), in the order given: 'procedural'
+// (the built-in generator's models, --variants per category), model folders, and scenes (Gazebo
+// worlds, ScanNet scans, ...) whose categorised objects are taken once per model id. Mixing them
+// builds, e.g., the built-in models together with a user's own.
 std::vector<recognition::ModelSource> ModelSourcesFrom(const std::vector<std::string>& specs, const DbArgs& a,
                                                        const char* option, std::vector<std::string>* skipped) {
   std::vector<recognition::ModelSource> sources;
   namespace fs = std::filesystem;
-  const std::string& first = specs.front();
-  if (specs.size() == 1 && first == "procedural") {
-    if (a.variants < 1) throw InputError("--variants must be at least 1");
-    sources = recognition::ProceduralModelSources(
-        a.variants, 0, recognition::ParseProceduralSampling(a.sampling, "--sampling"));
-  } else if (specs.size() == 1 && fs::is_directory(first) && !io::IsScanNetSpec(first)) {
-    sources = recognition::ModelSourcesFromFolder(first, skipped);
-  } else {
-    io::SceneLoadOptions load;
-    load.model_path = a.model_path;
-    if (!a.category_map.empty()) load.category_map = a.category_map;
-    std::vector<eval::WorldModels> worlds;
-    for (const std::string& spec : specs) worlds.push_back({spec, io::LoadScene(spec, load)});
-    sources = eval::ModelDisjointSources(worlds, worlds.size());
-    if (sources.empty()) throw InputError(std::string(option) + " " + first + ": no categorised object in the given scenes");
+  io::SceneLoadOptions load;
+  load.model_path = a.model_path;
+  if (!a.category_map.empty()) load.category_map = a.category_map;
+  std::vector<eval::WorldModels> worlds;
+  const auto add_worlds = [&]() {
+    if (worlds.empty()) return;
+    const std::vector<recognition::ModelSource> from_worlds = eval::ModelDisjointSources(worlds, worlds.size());
+    if (from_worlds.empty()) {
+      throw InputError(std::string(option) + " " + worlds.front().world_path + ": no categorised object in the given scenes");
+    }
+    sources.insert(sources.end(), from_worlds.begin(), from_worlds.end());
+    worlds.clear();
+  };
+  for (const std::string& spec : specs) {
+    if (spec == "procedural") {
+      add_worlds();
+      if (a.variants < 1) throw InputError("--variants must be at least 1");
+      const std::vector<recognition::ModelSource> generated = recognition::ProceduralModelSources(
+          a.variants, 0, recognition::ParseProceduralSampling(a.sampling, "--sampling"));
+      sources.insert(sources.end(), generated.begin(), generated.end());
+    } else if (fs::is_directory(spec) && !io::IsScanNetSpec(spec)) {
+      add_worlds();
+      const std::vector<recognition::ModelSource> folder = recognition::ModelSourcesFromFolder(spec, skipped);
+      sources.insert(sources.end(), folder.begin(), folder.end());
+    } else {
+      worlds.push_back({spec, io::LoadScene(spec, load)});
+    }
   }
+  add_worlds();
   return sources;
 }
 
@@ -141,6 +157,9 @@ int RunEval(const DbArgs& a) {
   const recognition::ModelDatabase db = recognition::ModelDatabase::Load(a.eval_db);
   std::vector<std::string> skipped_folders;
   const bool procedural = a.queries.size() == 1 && a.queries.front() == "procedural";
+  if (!procedural && std::find(a.queries.begin(), a.queries.end(), "procedural") != a.queries.end()) {
+    throw InputError("--queries procedural (unseen generator models) cannot be combined with other queries");
+  }
   const std::vector<recognition::ModelSource> queries =
       procedural ? recognition::ProceduralQuerySources(db, options)
                  : ModelSourcesFrom(a.queries, a, "--queries", &skipped_folders);
@@ -172,11 +191,25 @@ int RunEval(const DbArgs& a) {
   j["skipped_folders"] = skipped_folders;
   nlohmann::json per_query = nlohmann::json::array();
   for (const auto& q : r.queries) {
+    nlohmann::json retrieved = nlohmann::json::array();
+    for (const auto& m : q.retrieved) {
+      retrieved.push_back({{"model", m.model},
+                           {"category", world::CategoryName(m.category)},
+                           {"rank_score", m.rank_score},
+                           {"bow", m.bow},
+                           {"fit", m.fit},
+                           {"objectness", m.objectness},
+                           {"visible_objectness", m.visible_objectness},
+                           {"query_inliers", m.query_inliers},
+                           {"model_inliers", m.model_inliers},
+                           {"fscore", m.fscore}});
+    }
     per_query.push_back({{"model", q.model},
                          {"views", q.views},
                          {"truth", world::CategoryName(q.truth)},
                          {"predicted", world::CategoryName(q.predicted)},
-                         {"top5", q.top5}});
+                         {"top5", q.top5},
+                         {"retrieved", retrieved}});
   }
   j["queries"] = per_query;
   std::printf("%s\n", j.dump(2).c_str());

@@ -25,6 +25,7 @@
 #include "objscan/io/scene_spec.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/database_cache.h"
+#include "objscan/recognition/default_database.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/scanning/scanner.h"
 #include "objscan/scanning/scene_limits.h"
@@ -47,67 +48,22 @@ struct RunArgs {
   bool save_frames = false;
 };
 
-constexpr int kDefaultDatabaseVariants = 8;
-// Every style of each category's generator in the built-in database, each style's models the size
-// medoids of its pool models (database_builder.h). Over the 60 procedural rooms of seeds 1-12, every
-// style gave coverage 72.4% against 69.1% with the first eight seeds (docs/results/db-sampling-2026-11-24.md); the medoids
-// brought shelves and filing cabinets of the rooms' middle heights into it (be00778, 2026-11-25).
-constexpr recognition::ProceduralSampling kDefaultDatabaseSampling = recognition::ProceduralSampling::kStyleMedoids;
-
-std::string CacheDir() {
-  if (const char* d = std::getenv("OBJSCAN_CACHE_DIR")) return d;
-  if (const char* d = std::getenv("XDG_CACHE_HOME")) return std::string(d) + "/objscan";
-  if (const char* h = std::getenv("HOME")) return std::string(h) + "/.cache/objscan";
-  return ".objscan-cache";
-}
-
-// FNV-1a of the builder revision and the build options as YAML: a changed builder or default (the
-// pre-segmentation's adjacency, say) names a new cache file instead of reusing a database built the
-// old way.
-std::string BuildOptionsKey(const recognition::DatabaseBuildOptions& options) {
-  std::uint64_t hash = 1469598103934665603ull;
-  const std::string key =
-      "builder " + std::to_string(recognition::kDatabaseBuilderRevision) + "\n" + config::ToYaml(config::Dump(options));
-  for (const unsigned char c : key) {
-    hash = (hash ^ c) * 1099511628211ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof(buf), "%08llx", static_cast<unsigned long long>(hash & 0xffffffffull));
-  return buf;
-}
-
 }  // namespace
 
 std::string DefaultDatabasePath(bool verbose) {
-  namespace fs = std::filesystem;
-  const recognition::DatabaseBuildOptions options;
-  const std::string path = CacheDir() + "/procedural-v" + std::to_string(recognition::ModelDatabase::kFormatVersion) +
-                           "-n" + std::to_string(kDefaultDatabaseVariants) + "-" +
-                           recognition::ProceduralSamplingName(kDefaultDatabaseSampling) + "-" + BuildOptionsKey(options) +
-                           ".db";
-  std::error_code ec;
-  fs::create_directories(CacheDir(), ec);
-  if (ec) throw InputError(CacheDir() + ": cannot create the database cache folder: " + ec.message());
-  // Temporaries of a build that was killed (io/atomic_file.h).
-  io::RemoveStaleTempFiles(CacheDir());
-  recognition::EnsureCachedDatabase(
-      path,
-      [&] {
-        recognition::ModelDatabase db = recognition::BuildDatabase(
-            recognition::ProceduralModelSources(kDefaultDatabaseVariants, 0, kDefaultDatabaseSampling), options,
-            TerminalProgress("database"));
-        FinishProgress();
-        return db;
-      },
-      [&](const recognition::CachedDatabaseStatus& status) {
+  const std::string path = recognition::EnsureDefaultDatabase(
+      recognition::DefaultDatabaseCacheDir(), TerminalProgress("database"),
+      [verbose](const recognition::CachedDatabaseStatus& status, const std::string& db_path) {
         // A damaged cache is reported even with --quiet: it is not progress but something that went wrong.
         if (!status.damage.empty()) {
           std::fprintf(stderr, "objscan: the cached model database is damaged, rebuilding it: %s\n",
                        status.damage.c_str());
         } else if (verbose) {
-          std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n", path.c_str());
+          std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n",
+                       db_path.c_str());
         }
       });
+  FinishProgress();
   return path;
 }
 

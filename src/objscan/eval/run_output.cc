@@ -66,6 +66,8 @@ std::string RunJson(const RunOutputInputs& in) {
   j["database"] = in.database_path;
   j["config"] = Json::parse(scanning::ToJson(*in.config));
   j["terminated"] = scanning::TerminationName(r.terminated);
+  j["explored_area_m2"] = std::round(r.explored_area_m2 * 100.0) / 100.0;
+  j["step_budget"] = r.step_budget;
   Json steps = Json::array();
   for (const auto& s : r.steps) {
     Json step{{"index", s.index},

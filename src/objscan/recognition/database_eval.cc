@@ -132,6 +132,7 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
   struct TaskResult {
     world::Category predicted = world::Category::kOther;
     bool top1 = false, top5 = false;
+    std::vector<DatabaseEvalResult::Retrieved> retrieved;
     double ms = 0.0;
     double complete = 0.0, partial = 0.0;
   };
@@ -156,6 +157,12 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
         r.predicted = database.entries()[similar.front().entry].category;
         r.top1 = r.predicted == task.source->category;
         for (const auto& s : similar) r.top5 = r.top5 || database.entries()[s.entry].category == task.source->category;
+      }
+      for (const SimilarModel& s : similar) {
+        const DatabaseEntry& e = database.entries()[s.entry];
+        r.retrieved.push_back({e.name, e.category, s.rank_score, s.bow_score, s.fit,
+                               s.objectness.objectness, s.visible_objectness, s.query_inliers, s.model_inliers,
+                               s.fscore});
       }
     } else {
       const DatabaseModel& model = database.models()[objectness_models[t - n_tasks]];
@@ -190,7 +197,8 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
       acc.top1_category_accuracy += results[t].top1 ? 1.0 : 0.0;
       acc.top5_category_accuracy += results[t].top5 ? 1.0 : 0.0;
       ms_sum += results[t].ms;
-      out.queries.push_back({tasks[t].source->category, results[t].predicted, views, results[t].top5, tasks[t].source->name});
+      out.queries.push_back({tasks[t].source->category, results[t].predicted, views, results[t].top5,
+                             tasks[t].source->name, std::move(results[t].retrieved)});
     }
     acc.top1_category_accuracy /= std::max(1, acc.queries);
     acc.top5_category_accuracy /= std::max(1, acc.queries);

@@ -63,13 +63,28 @@ struct DatabaseEvalResult {
   double ms_per_query = 0.0;            // describe + retrieve (+ align, objectness) per query
   std::vector<ViewCountAccuracy> by_views;  // 1 and 3 views
   int objectness_models = 0;
-  // Per single-view query: true and predicted category, for confusion analysis.
+  // One entry of a query's M(c), best first, with the terms its rank score is made of: what a
+  // different ranking would have chosen can be worked out from these without scanning again.
+  struct Retrieved {
+    std::string model;  // the entry's DatabaseModel::name
+    world::Category category = world::Category::kOther;
+    double rank_score = 0.0;
+    double bow = 0.0;                 // bag-of-words cosine
+    double fit = 0.0;                 // exp(-sqrt(d(c, m)) / Diag(c))
+    double objectness = 0.0;          // eq. (1)
+    double visible_objectness = 0.0;  // eq. (1), completeness over sensor-facing entry keypoints
+    double query_inliers = 0.0;       // SimilarModel::query_inliers, model_inliers, fscore
+    double model_inliers = 0.0;
+    double fscore = 0.0;
+  };
+  // Per query: true and predicted category, for confusion analysis, and M(c).
   struct Query {
     world::Category truth = world::Category::kOther;
     world::Category predicted = world::Category::kOther;
     int views = 1;
     bool top5 = false;
     std::string model;  // the query's ModelSource::name
+    std::vector<Retrieved> retrieved;
   };
   std::vector<Query> queries;
   // Query sources left out because the database has no model of their category, and the number of

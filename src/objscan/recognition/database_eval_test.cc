@@ -57,6 +57,19 @@ TEST(DatabaseEvalTest, OwnModelsAreRecognizedAndUnknownCategoriesSkipped) {
   for (const auto& q : r.queries) {
     EXPECT_TRUE(q.model == queries[0].name || q.model == queries[1].name) << q.model;
     EXPECT_TRUE(q.top5) << q.model << ": both categories are among the retrieved";
+    // M(c) is listed best first, the first names the prediction and its scores are eq. (1)'s terms.
+    ASSERT_FALSE(q.retrieved.empty()) << q.model;
+    EXPECT_EQ(q.retrieved.front().category, q.predicted);
+    for (std::size_t k = 0; k < q.retrieved.size(); ++k) {
+      const auto& m = q.retrieved[k];
+      if (k > 0) {
+        EXPECT_LE(m.rank_score, q.retrieved[k - 1].rank_score) << q.model;
+      }
+      EXPECT_GT(m.fit, 0.0);
+      EXPECT_LE(m.fit, 1.0);
+      EXPECT_LE(m.objectness, m.fit) << "eq. (1) adds completeness to the fit's distance";
+      EXPECT_FALSE(m.model.empty());
+    }
   }
 
   // Same seed, same answers, whatever the thread count.

@@ -23,6 +23,9 @@ void RecognitionOptions::Validate() const {
   config::RequireNonNegative("recognition.objectness_rank_weight", objectness_rank_weight);
   config::RequireNonNegative("recognition.visible_rank_weight", visible_rank_weight);
   config::RequireInRange("recognition.visible_min_cos", visible_min_cos, -1.0, 1.0);
+  config::RequireNonNegative("recognition.fscore_rank_weight", fscore_rank_weight);
+  config::RequirePositive("recognition.inlier_tolerance_m", inlier_tolerance_m);
+  config::RequireNonNegative("recognition.inlier_tolerance_fraction", inlier_tolerance_fraction);
   config::Require(max_per_category >= 0, "recognition.max_per_category", "must be >= 0");
   config::Require(refine_entries >= 0, "recognition.refine_entries", "must be >= 0 (0 = all)");
   config::Require(estimate_points >= 3, "recognition.estimate_points", "must be at least 3");
@@ -188,17 +191,19 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   }
   // d(c, m): query points mapped into the entry frame, nearest entry keypoint.
   const Eigen::Affine3f T = m->alignment.T_item_query.cast<float>();
+  const double tau = std::max(options_.inlier_tolerance_m, options_.inlier_tolerance_fraction * diag);
+  const float tau2 = static_cast<float>(tau * tau);
+  // The query's inliers are always counted (one nearest-neighbour pass, a small part of the
+  // alignment's cost): M(c) reports P, R and F whatever the rank weights.
   double sum = 0.0;
-  if (refined) {
-    o.similarity_m2 = m->alignment.mean_squared_distance_m2;
-  } else {
-    for (const auto& p : points) {
-      float d2 = 0.f;
-      target.tree().Nearest(T * p, &d2);
-      sum += d2;
-    }
-    o.similarity_m2 = sum / static_cast<double>(points.size());
+  int query_inliers = 0;
+  for (const auto& p : points) {
+    float d2 = 0.f;
+    target.tree().Nearest(T * p, &d2);
+    sum += d2;
+    if (d2 <= tau2) ++query_inliers;
   }
+  o.similarity_m2 = refined ? m->alignment.mean_squared_distance_m2 : sum / static_cast<double>(points.size());
   // d(m, c): entry keypoints mapped into the query frame (distances there are 1/scale of the entry
   // frame's); each squared distance is kept for the visible term below.
   const Eigen::Affine3f T_query_item = m->alignment.T_item_query.inverse().cast<float>();
@@ -228,6 +233,12 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   o.objectness = std::exp(-std::sqrt(o.similarity_m2 + o.completeness_m2) / diag);
   m->fit = std::exp(-std::sqrt(o.similarity_m2) / diag);
   m->visible_objectness = o.objectness;
+  // R over the entry keypoints facing the sensor (all of them for a query seen from all around).
+  int model_inliers = 0, model_counted = 0;
+  const auto count_inlier = [&](std::size_t k) {
+    ++model_counted;
+    if (model_d2[k] <= tau2) ++model_inliers;
+  };
   if (!query.view_direction.isZero() && e.keypoint_normals.size() == model.size()) {
     const Eigen::Vector3f view_item = (T.linear() * query.view_direction).normalized();
     double visible_sum = 0.0;
@@ -236,9 +247,17 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
       if (e.keypoint_normals[k].dot(view_item) <= options_.visible_min_cos) continue;
       visible_sum += model_d2[k];
       ++n;
+      count_inlier(k);
     }
     if (n > 0) m->visible_objectness = std::exp(-std::sqrt(o.similarity_m2 + visible_sum / n) / diag);
   }
+  if (model_counted == 0) {
+    for (std::size_t k = 0; k < n_model; ++k) count_inlier(k);
+  }
+  m->query_inliers = static_cast<double>(query_inliers) / static_cast<double>(points.size());
+  m->model_inliers = model_counted > 0 ? static_cast<double>(model_inliers) / model_counted : 0.0;
+  const double pr = m->query_inliers + m->model_inliers;
+  m->fscore = pr > 0.0 ? 2.0 * m->query_inliers * m->model_inliers / pr : 0.0;
   m->support_factor = 1.0;
   if (space != nullptr && options_.support_height_tolerance_m > 0.0) {
     if (const std::optional<double> floor = space->FloorHeight()) {
@@ -247,6 +266,7 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
       o.objectness *= m->support_factor;
       m->fit *= m->support_factor;
       m->visible_objectness *= m->support_factor;
+      m->fscore *= m->support_factor;
     }
   }
   if (check_space) {
@@ -258,6 +278,7 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
     o.objectness *= factor;
     m->fit *= factor;
     m->visible_objectness *= factor;
+    m->fscore *= factor;
   }
   m->rank_score = o.objectness;
 }
@@ -267,7 +288,8 @@ void Recognizer::ScoreForRanking(const ScoredItem& candidate, SimilarModel* m) c
   m->rank_score = std::pow(std::max(0.f, candidate.score), options_.bow_rank_weight) *
                   std::pow(m->fit, options_.fit_rank_weight) *
                   std::pow(m->objectness.objectness, options_.objectness_rank_weight) *
-                  std::pow(m->visible_objectness, options_.visible_rank_weight);
+                  std::pow(m->visible_objectness, options_.visible_rank_weight) *
+                  std::pow(m->fscore, options_.fscore_rank_weight);
 }
 
 std::vector<SimilarModel> Recognizer::Retrieve(const QueryDescription& query, RetrievalScope scope,

@@ -31,6 +31,14 @@ struct RecognitionOptions {
   // only over the model keypoints facing the query's sensor side (see QueryDescription).
   double visible_rank_weight = 1.0;
   double visible_min_cos = 0.2;  // a model keypoint faces the sensor when n . view > this
+  // ... * F^fscore_rank_weight, with F the surface F-score of the aligned entry: 2PR / (P + R), P the
+  // share of query keypoints within tau of the entry, R the share of the entry's keypoints (those
+  // facing the sensor, as for O_visible) within tau of the query, tau = max(inlier_tolerance_m,
+  // inlier_tolerance_fraction x Diag(c)). Shares of points within a tolerance count how much of two
+  // surfaces agree; eq. (1)'s mean distances are dominated by the many points that agree anyway.
+  double fscore_rank_weight = 0.0;
+  double inlier_tolerance_m = 0.03;
+  double inlier_tolerance_fraction = 0.0;
   // At most this many entries of one category in M(c) (0 = no limit): the post-segmentation's graph
   // cut chooses among categories, so M(c) keeps alternatives instead of five near-identical boxes.
   int max_per_category = 2;
@@ -91,6 +99,9 @@ struct RecognitionOptions {
     v("objectness_rank_weight", objectness_rank_weight);
     v("visible_rank_weight", visible_rank_weight);
     v("visible_min_cos", visible_min_cos);
+    v("fscore_rank_weight", fscore_rank_weight);
+    v("inlier_tolerance_m", inlier_tolerance_m);
+    v("inlier_tolerance_fraction", inlier_tolerance_fraction);
     v("max_per_category", max_per_category);
     v("refine_entries", refine_entries);
     v("estimate_points", estimate_points);
@@ -130,6 +141,9 @@ struct SimilarModel {
   ObjectnessTerms objectness; // eq. (1) after alignment
   double fit = 0.0;           // exp(-sqrt(d(c, m)) / Diag(c))
   double visible_objectness = 0.0;  // eq. (1) with completeness over sensor-facing model keypoints
+  double query_inliers = 0.0;  // P: share of query keypoints within the inlier tolerance of the entry
+  double model_inliers = 0.0;  // R: share of (sensor-facing) entry keypoints within it of the query
+  double fscore = 0.0;         // 2PR / (P + R)
   double impossible_fraction = 0.0;  // share of the aligned entry's keypoints where no surface can be
   double support_factor = 1.0;       // RecognitionOptions::support_height_tolerance_m's factor
   double rank_score = 0.0;

@@ -133,6 +133,10 @@ struct RunRecord {
   int nbo_count = 0;
   int nbv_views = 0;
   int coverage_views = 0;  // views completing reported objects' scans (not in nbv_views or nbo_count)
+  // The area explored (navigation grid cells seen free or occupied) and the step budget it gave
+  // (ScannerOptions::steps_per_explored_m2), as of the last step.
+  double explored_area_m2 = 0.0;
+  int step_budget = 0;
   double NbvPerObject() const { return nbo_count > 0 ? static_cast<double>(nbv_views) / nbo_count : 0.0; }
 };
 

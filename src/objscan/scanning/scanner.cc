@@ -798,6 +798,18 @@ struct Scanner::State {
     return Termination::kRunning;
   }
 
+  // The explored area and the step budget it gives (ScannerOptions::steps_per_explored_m2).
+  void UpdateStepBudget() {
+    RefreshNavigation();
+    const sim::OccupancyGrid2D& grid = navigator.grid();
+    const double cell_m2 = grid.cell_size_m * grid.cell_size_m;
+    record.explored_area_m2 =
+        cell_m2 * static_cast<double>(grid.Count(sim::CellState::kFree) + grid.Count(sim::CellState::kOccupied));
+    const ScannerOptions& o = config.scanner;
+    const double by_area = std::min(1e9, std::ceil(o.steps_per_explored_m2 * record.explored_area_m2));
+    record.step_budget = std::min(o.max_steps, std::max(o.step_budget, static_cast<int>(by_area)));
+  }
+
   void RefreshNavigation() {
     if (!map_changed) return;
     navigator.Update(robot_occupancy);
@@ -1030,7 +1042,8 @@ bool Scanner::Step() {
   State& s = *state_;
   RunRecord& rec = s.record;
   if (rec.terminated != Termination::kRunning) return false;
-  if (static_cast<int>(rec.steps.size()) >= s.config.scanner.max_steps) {
+  s.UpdateStepBudget();
+  if (static_cast<int>(rec.steps.size()) >= rec.step_budget) {
     rec.terminated = Termination::kMaxSteps;
     return false;
   }
@@ -1088,7 +1101,7 @@ bool Scanner::Step() {
 const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   State& s = *state_;
   while (Step()) {
-    ReportProgress(progress, static_cast<double>(s.record.steps.size()) / s.config.scanner.max_steps,
+    ReportProgress(progress, static_cast<double>(s.record.steps.size()) / std::max(1, s.record.step_budget),
                    "step " + std::to_string(s.record.steps.size()) + ", " + std::to_string(s.completed.size()) +
                        " objects complete");
   }

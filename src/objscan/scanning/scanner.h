@@ -45,7 +45,7 @@ class Scanner {
 
   // One iteration; returns false once terminated.
   bool Step();
-  // Steps until terminated; progress reports steps against scanner.max_steps.
+  // Steps until terminated; progress reports steps against the step budget (RunRecord::step_budget).
   const RunRecord& Run(const ProgressCallback& progress = nullptr);
 
   const RunRecord& record() const;

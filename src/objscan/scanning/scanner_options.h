@@ -13,9 +13,18 @@ struct ScannerOptions {
   // "frontier": classic frontier exploration without object guidance (baseline); objects are still
   // recognised from what was seen.
   std::string guidance = "object";
-  // Terminated "max_steps" beyond this. In the 60 procedural rooms of seeds 1-12 the paper's loop
-  // ends within 97 steps; with the coverage views (coverage_views.h) 59 of them end within 156.
-  int max_steps = 160;
+  // The step budget: a run is terminated "max_steps" after min(max_steps, max(step_budget,
+  // steps_per_explored_m2 x the area explored so far)) steps. max_steps is the hard cap (set it to
+  // cut a run short); step_budget is what one room gets: in the 60 procedural rooms of seeds 1-12
+  // the paper's loop ends within 97 steps, and with the coverage views (coverage_views.h) 59 of them
+  // end within 156.
+  int max_steps = 1000;
+  int step_budget = 160;
+  // The budget grows with the area explored (navigation grid cells seen free or occupied): the loop's
+  // work (frontiers, objects, views) grows with the floor, so a house gets the steps its rooms need
+  // and a single room keeps step_budget. 3 per m2 leaves every room up to 53 m2 at 160; the AWS small
+  // house (131 m2 explored) ended `done` after 317 steps. 0 = a fixed budget.
+  double steps_per_explored_m2 = 3.0;
   double start_camera_height_m = 1.2;  // camera height of look-around views
   double explore_pitch_deg = -25.0;    // pitch of the views taken on arriving at a frontier
   int frontier_views = 4;              // views turning in place at a reached frontier
@@ -67,6 +76,8 @@ struct ScannerOptions {
   void Visit(V& v) {
     v("guidance", guidance);
     v("max_steps", max_steps);
+    v("step_budget", step_budget);
+    v("steps_per_explored_m2", steps_per_explored_m2);
     v("start_camera_height_m", start_camera_height_m);
     v("explore_pitch_deg", explore_pitch_deg);
     v("frontier_views", frontier_views);
@@ -92,6 +103,8 @@ struct ScannerOptions {
   void Validate() const {
     config::Require(guidance == "object" || guidance == "frontier", "scanner.guidance", "must be object or frontier");
     config::Require(max_steps >= 1, "scanner.max_steps", "must be >= 1");
+    config::Require(step_budget >= 1, "scanner.step_budget", "must be >= 1");
+    config::RequireNonNegative("scanner.steps_per_explored_m2", steps_per_explored_m2);
     config::RequireInRange("scanner.start_camera_height_m", start_camera_height_m, 0.3, 1.8);
     config::RequireInRange("scanner.explore_pitch_deg", explore_pitch_deg, -70.0, 30.0);
     config::Require(frontier_views >= 1, "scanner.frontier_views", "must be >= 1");

@@ -10,7 +10,7 @@ namespace objscan::scanning {
 std::vector<std::string> DefaultReportRules() {
   return {"model_label", "absorb_fragments", "regroup_by_size",   "join_stacked",       "door_depth",
           "wall_openings", "size_check",     "curtain_must_hang", "relabel",            "join_window_pieces",
-          "curtains_over_windows", "drop_small"};
+          "curtains_over_windows", "drop_small", "drop_unsure"};
 }
 
 std::vector<std::string> AllReportRules() {
@@ -18,7 +18,6 @@ std::vector<std::string> AllReportRules() {
   // unfinished); off by default: it cost recall and coverage on the OASC dev worlds.
   std::vector<std::string> all = {"reopen_outgrown"};
   for (const std::string& name : DefaultReportRules()) all.push_back(name);
-  all.push_back("drop_unsure");
   return all;
 }
 

@@ -393,7 +393,7 @@ TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
 TEST(ReportPipelineTest, DefaultListNamesEveryRuleOnceAndUnknownNamesAreRejected) {
   const std::vector<std::string> all = AllReportRules();
   EXPECT_EQ(std::set<std::string>(all.begin(), all.end()).size(), all.size());
-  EXPECT_EQ(DefaultReportRules().size() + 2, all.size());  // + reopen_outgrown, drop_unsure
+  EXPECT_EQ(DefaultReportRules().size() + 1, all.size());  // + reopen_outgrown
   ReportOptions options;
   for (const auto& name : all) EXPECT_NE(MakeReportRule(name, options), nullptr) << name;
   EXPECT_TRUE(ReportPipeline(options).needs_category_extents());

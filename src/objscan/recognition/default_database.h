@@ -1,0 +1,34 @@
+#pragma once
+// The built-in procedural model database of `objscan run` and `objscan bench` (and of the Python
+// module): every style of each category's generator, built once and cached in a file named after
+// the database format, the builder revision and the build options, so a changed builder never reuses
+// a stale cache.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "objscan/common/progress.h"
+#include "objscan/recognition/database_cache.h"
+
+namespace objscan::recognition {
+
+// $OBJSCAN_CACHE_DIR, else $XDG_CACHE_HOME/objscan, else $HOME/.cache/objscan, else .objscan-cache.
+std::string DefaultDatabaseCacheDir();
+
+// The path of the built-in database in `cache_dir` (nothing is built or checked).
+std::string DefaultDatabasePathIn(const std::string& cache_dir);
+
+// Makes the built-in database valid in `cache_dir` (created when missing; built when missing or
+// damaged, database_cache.h) and returns its path. `before_build` (optional) is called once before a
+// build starts, with the status so far (its `damage` says why a file was rejected) and the path;
+// `progress` reports the build. Throws InputError naming the folder when it cannot be created.
+std::string EnsureDefaultDatabase(
+    const std::string& cache_dir, const ProgressCallback& progress = nullptr,
+    const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build = nullptr);
+
+// The memory limit of a model database in bytes (ModelDatabase::Load): `max_database_memory_mb`
+// (recognition.max_database_memory_mb), or when that is 0 the memory the machine has available now
+// (MemAvailable; 0 = no limit when unknown).
+std::uint64_t DatabaseMemoryLimitBytes(double max_database_memory_mb);
+
+}  // namespace objscan::recognition
