@@ -1,6 +1,7 @@
 // Benchmarks of recognition (paper §4.2): describing a query, retrieving M(c) from databases of
 // 100, 400 and 1600 entries (the bag-of-words stage alone and the whole retrieval with alignment and
-// objectness of the shortlist), aligning, objectness, Lloyd keypoints and loading a database; with
+// objectness of the shortlist), aligning, objectness, Lloyd keypoints, FPFH histograms (ours and PCL's
+// FPFHEstimation, the peer, on the same cloud and keypoints) and loading a database; with
 // OBJSCAN_BENCH_DB set, describing and retrieving eval-like queries against that database.
 // The larger databases replicate a database of analytic shapes with perturbed copies (histograms
 // reweighted and thinned, keypoints scaled), so posting lists grow with the item count as they would.
@@ -14,6 +15,7 @@
 
 #include "objscan/common/rng.h"
 #include "objscan/recognition/alignment.h"
+#include "objscan/recognition/fpfh_descriptor.h"
 #include "objscan/recognition/keypoints.h"
 #include "objscan/recognition/objectness.h"
 #include "objscan/recognition/recognizer.h"
@@ -185,6 +187,36 @@ void BM_LloydKeypoints(benchmark::State& state) {
   state.counters["points"] = static_cast<double>(cloud.size());
 }
 BENCHMARK(BM_LloydKeypoints)->Unit(benchmark::kMillisecond);
+
+// FPFH at 200 Lloyd keypoints of a sofa-like surface (1 cm spacing, 2 mm noise), the database
+// builder's and the query's setting. Arg 0: our histograms; arg 1: PCL's FPFHEstimation (the peer).
+// Both include the same PCA normals, thinning and keypoint lookup; only the histograms differ.
+void BM_Fpfh(benchmark::State& state) {
+  geometry::PointCloud cloud;
+  testing::SofaLike(0.01, &cloud.points, &cloud.normals);
+  Rng noise(4);
+  for (auto& p : cloud.points) p += Eigen::Vector3f(noise.Normal(0, 0.002), noise.Normal(0, 0.002), noise.Normal(0, 0.002));
+  Rng rng(2);
+  KeypointOptions keypoint_options;
+  keypoint_options.num_keypoints = 200;
+  std::vector<Eigen::Vector3f> keypoints;
+  for (int i : SampleKeypointsLloyd(cloud.points, keypoint_options, &rng)) keypoints.push_back(cloud.points[i]);
+  const FpfhDescriptor fpfh{DescriptorOptions()};
+  const bool with_pcl = state.range(0) == 1;
+  std::vector<float> descriptors;
+  for (auto _ : state) {
+    if (with_pcl) {
+      fpfh.ComputeWithPcl(cloud, keypoints, &descriptors);
+    } else {
+      fpfh.Compute(cloud, keypoints, &descriptors);
+    }
+    benchmark::DoNotOptimize(descriptors.data());
+  }
+  state.SetLabel(with_pcl ? "pcl::FPFHEstimation" : "objscan");
+  state.counters["points"] = static_cast<double>(cloud.size());
+  state.counters["keypoints"] = static_cast<double>(keypoints.size());
+}
+BENCHMARK(BM_Fpfh)->Arg(0)->Arg(1)->ArgName("pcl")->Unit(benchmark::kMillisecond);
 
 void BM_LoadDatabase(benchmark::State& state) {
   const ModelDatabase& db = ScaledDatabase(1600);

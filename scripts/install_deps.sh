@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every build and test dependency of objscan through Debian packages (Debian 12).
 # Idempotent: packages already present are left alone. Run as root.
-# Optional peers for benchmarks: OBJSCAN_WITH_PEERS=1 also installs Open3D.
+# Optional peers: OBJSCAN_WITH_PEERS=1 also installs Open3D (C++ for objscan_bench, Python for the test
+# that reads a run's PLY files with Open3D).
 set -euo pipefail
 
 packages=(
@@ -21,7 +22,7 @@ packages=(
   slurm-wlm
 )
 if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then
-  packages+=(libopen3d-dev)
+  packages+=(libopen3d-dev python3-open3d)
 fi
 
 missing=()

@@ -234,9 +234,20 @@ class BodyReader {
 };
 
 std::string ReadWhole(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError(path + ": cannot open PLY file");
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  // One read of the file's size (a stream iterator goes byte by byte: most of a large binary
+  // file's read time); a stream without a size (a pipe) is read the slow way.
+  const std::streamoff size = in.tellg();
+  if (size < 0) {
+    in.clear();
+    in.seekg(0);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::string file(static_cast<std::size_t>(size), '\0');
+  in.seekg(0);
+  if (!in.read(file.data(), size)) throw InputError(path + ": cannot read PLY file");
+  return file;
 }
 
 // A value read from the file as a 32-bit integer: false for NaN, an infinity, a fraction or a value
