@@ -6,6 +6,8 @@ the header carries the `label` and `instance` fields. Without Open3D the test is
 reported by ctest as skipped, never as passed.
 
 Environment (set by ctest): OBJSCAN_BINARY, OBJSCAN_TEST_DB (a small database).
+By hand, on a run folder already written (e.g. the default run's):
+    python3 tests/peers/test_open3d_reads_ply.py objscan-out/
 """
 import os
 import subprocess
@@ -69,11 +71,14 @@ def main():
         import open3d as o3d
     except ImportError as e:
         return skip(f"Open3D's Python module is not installed ({e}): OBJSCAN_WITH_PEERS=1 scripts/install_deps.sh")
-    objscan, db = os.environ["OBJSCAN_BINARY"], os.environ["OBJSCAN_TEST_DB"]
-    out = tempfile.mkdtemp(prefix="objscan_open3d_")
-    r = subprocess.run([objscan, "run", "--scene", "procedural:bedroom:1", "--db", db, "--out", out, "--quiet",
-                        "--set", "scanner.max_steps=25"], capture_output=True, text=True, timeout=1200)
-    assert r.returncode == 0, f"objscan run: status {r.returncode}\n{r.stderr}"
+    if len(sys.argv) > 1:
+        out = sys.argv[1]
+    else:
+        objscan, db = os.environ["OBJSCAN_BINARY"], os.environ["OBJSCAN_TEST_DB"]
+        out = tempfile.mkdtemp(prefix="objscan_open3d_")
+        r = subprocess.run([objscan, "run", "--scene", "procedural:bedroom:1", "--db", db, "--out", out, "--quiet",
+                            "--set", "scanner.max_steps=25"], capture_output=True, text=True, timeout=1200)
+        assert r.returncode == 0, f"objscan run: status {r.returncode}\n{r.stderr}"
     labelled = check(os.path.join(out, "scene.ply"), "points", o3d, np)
     labelled |= check(os.path.join(out, "models.ply"), "mesh", o3d, np)
     assert labelled, "no point carries the colour of a recognized category"
