@@ -113,6 +113,30 @@ void BM_Open3DTsdfIntegrate(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Open3DTsdfIntegrate)->Unit(benchmark::kMillisecond);
+
+// The same frame into a volume that already holds it: the peer of BM_FuseFrameRevisit.
+void BM_Open3DTsdfIntegrateRevisit(benchmark::State& state) {
+  const sim::DepthFrame& frame = BedroomFrame();
+  const sim::CameraIntrinsics& in = frame.intrinsics;
+  open3d::geometry::Image depth;
+  depth.Prepare(in.width_px, in.height_px, 1, 4);
+  std::memcpy(depth.data_.data(), frame.depth_m.data(), frame.depth_m.size() * sizeof(float));
+  open3d::geometry::Image color;
+  color.Prepare(in.width_px, in.height_px, 3, 1);
+  auto rgbd = open3d::geometry::RGBDImage::CreateFromColorAndDepth(color, depth, 1.0, in.max_range_m, false);
+  const open3d::camera::PinholeCameraIntrinsic intrinsic(in.width_px, in.height_px, in.fx_px, in.fy_px, in.cx_px,
+                                                         in.cy_px);
+  const Eigen::Matrix4d extrinsic = frame.T_world_camera.inverse().matrix();
+  const double voxel = mapping::SurfaceMapOptions().voxel_size_m;
+  open3d::pipelines::integration::ScalableTSDFVolume volume(voxel, 4.0 * voxel,
+                                                            open3d::pipelines::integration::TSDFVolumeColorType::NoColor);
+  volume.Integrate(*rgbd, intrinsic, extrinsic);
+  for (auto _ : state) {
+    volume.Integrate(*rgbd, intrinsic, extrinsic);
+    benchmark::DoNotOptimize(&volume);
+  }
+}
+BENCHMARK(BM_Open3DTsdfIntegrateRevisit)->Unit(benchmark::kMillisecond);
 #endif
 
 }  // namespace
