@@ -62,6 +62,10 @@ excluded=(
   '^RunE2eTest\.PlyFilesCarryCategoryColoursAndNamesAndTheTumTrajectoryHoldsTheViews$'
   # build a database, damage it, run `objscan run` and `objscan bench` on it: 258 s and 223 s
   '^DatabaseFileTest\.'
+  # builds a database of the procedural models plus a model folder: 471 s
+  '^DbBuildSourcesTest\.'
+  # builds a small database and scans a bedroom twice (a budget from the explored area, then capped): 357 s
+  '^RunE2eTest\.StepBudgetGrowsWithTheExploredAreaUpToMaxSteps$'
   # a whole ScanNet scan with metrics: 244 s
   '^RealInputsTest\.ScanNetScanRunsEndToEndWithMetrics$'
   # start Slurm daemons and run a sharded bench through them; what they test is the script and the
