@@ -469,6 +469,9 @@ PlyData ReadPly(const std::string& path) {
         }
       }
     } else {
+      // An element without properties holds no bytes, whatever its count: nothing to skip (a count
+      // of 10^12 would otherwise loop for hours over nothing; the size check above cannot catch it).
+      if (e.properties.empty()) continue;
       for (std::size_t r = 0; r < e.count; ++r) {
         for (const Property& p : e.properties) {
           if (p.is_list) {

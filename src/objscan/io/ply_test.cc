@@ -102,6 +102,19 @@ TEST(PlyTest, ReadsForeignLayoutsQuadsAndBigEndian) {
   EXPECT_EQ(b.int_properties[0].second[0], 258);
 }
 
+// Found by fuzzing (fuzz/regressions/ply/element_without_properties_huge_count.ply): an element
+// with no properties holds no bytes, so its count is not bounded by the file's size; reading it must
+// not loop over 10^12 empty rows.
+TEST(PlyTest, ElementWithoutPropertiesAndAHugeCountIsReadAtOnce) {
+  TempDir dir;
+  testing::WriteText(dir.File("e.ply"),
+                     "ply\nformat ascii 1.0\nelement nothing 1000000000000\nelement vertex 1\nproperty float x\n"
+                     "property float y\nproperty float z\nelement more 6242949672950\nend_header\n1 2 3\n");
+  const PlyData d = ReadPly(dir.File("e.ply"));
+  ASSERT_EQ(d.points.size(), 1u);
+  EXPECT_EQ(d.points[0], Eigen::Vector3f(1.f, 2.f, 3.f));
+}
+
 TEST(PlyTest, CorruptFilesNameThePath) {
   TempDir dir;
   ExpectInputError([&] { ReadPly(dir.File("none.ply")); }, "none.ply");
