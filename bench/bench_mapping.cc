@@ -87,7 +87,16 @@ void BM_PresegmentFrame(benchmark::State& state) {
 BENCHMARK(BM_PresegmentFrame)->Unit(benchmark::kMillisecond);
 
 #ifdef OBJSCAN_HAVE_OPEN3D
-void BM_Open3DTsdfIntegrate(benchmark::State& state) {
+// The bedroom frame as Open3D's input: an RGBD image (depth in metres, no colour), its intrinsics and
+// the extrinsic (world -> camera), fused at objscan's voxel size with a 4-voxel truncation.
+struct Open3dFrame {
+  std::shared_ptr<open3d::geometry::RGBDImage> rgbd;
+  open3d::camera::PinholeCameraIntrinsic intrinsic;
+  Eigen::Matrix4d extrinsic;
+  double voxel_m;
+};
+
+Open3dFrame MakeOpen3dFrame() {
   const sim::DepthFrame& frame = BedroomFrame();
   const sim::CameraIntrinsics& in = frame.intrinsics;
   open3d::geometry::Image depth;
@@ -95,20 +104,28 @@ void BM_Open3DTsdfIntegrate(benchmark::State& state) {
   std::memcpy(depth.data_.data(), frame.depth_m.data(), frame.depth_m.size() * sizeof(float));
   open3d::geometry::Image color;
   color.Prepare(in.width_px, in.height_px, 3, 1);
-  auto rgbd = open3d::geometry::RGBDImage::CreateFromColorAndDepth(color, depth, /*depth_scale=*/1.0,
-                                                                   /*depth_trunc=*/in.max_range_m,
-                                                                   /*convert_rgb_to_intensity=*/false);
-  const open3d::camera::PinholeCameraIntrinsic intrinsic(in.width_px, in.height_px, in.fx_px, in.fy_px, in.cx_px,
-                                                         in.cy_px);
-  // Open3D takes the extrinsic (world -> camera).
-  const Eigen::Matrix4d extrinsic = frame.T_world_camera.inverse().matrix();
-  const double voxel = mapping::SurfaceMapOptions().voxel_size_m;
+  Open3dFrame f;
+  f.rgbd = open3d::geometry::RGBDImage::CreateFromColorAndDepth(color, depth, /*depth_scale=*/1.0,
+                                                                /*depth_trunc=*/in.max_range_m,
+                                                                /*convert_rgb_to_intensity=*/false);
+  f.intrinsic = open3d::camera::PinholeCameraIntrinsic(in.width_px, in.height_px, in.fx_px, in.fy_px, in.cx_px, in.cy_px);
+  f.extrinsic = frame.T_world_camera.inverse().matrix();
+  f.voxel_m = mapping::SurfaceMapOptions().voxel_size_m;
+  return f;
+}
+
+std::unique_ptr<open3d::pipelines::integration::ScalableTSDFVolume> MakeOpen3dVolume(double voxel_m) {
+  return std::make_unique<open3d::pipelines::integration::ScalableTSDFVolume>(
+      voxel_m, /*sdf_trunc=*/4.0 * voxel_m, open3d::pipelines::integration::TSDFVolumeColorType::NoColor);
+}
+
+void BM_Open3DTsdfIntegrate(benchmark::State& state) {
+  const Open3dFrame f = MakeOpen3dFrame();
   for (auto _ : state) {
     state.PauseTiming();
-    auto volume = std::make_unique<open3d::pipelines::integration::ScalableTSDFVolume>(
-        voxel, /*sdf_trunc=*/4.0 * voxel, open3d::pipelines::integration::TSDFVolumeColorType::NoColor);
+    auto volume = MakeOpen3dVolume(f.voxel_m);
     state.ResumeTiming();
-    volume->Integrate(*rgbd, intrinsic, extrinsic);
+    volume->Integrate(*f.rgbd, f.intrinsic, f.extrinsic);
     benchmark::DoNotOptimize(volume.get());
   }
 }
@@ -116,24 +133,12 @@ BENCHMARK(BM_Open3DTsdfIntegrate)->Unit(benchmark::kMillisecond);
 
 // The same frame into a volume that already holds it: the peer of BM_FuseFrameRevisit.
 void BM_Open3DTsdfIntegrateRevisit(benchmark::State& state) {
-  const sim::DepthFrame& frame = BedroomFrame();
-  const sim::CameraIntrinsics& in = frame.intrinsics;
-  open3d::geometry::Image depth;
-  depth.Prepare(in.width_px, in.height_px, 1, 4);
-  std::memcpy(depth.data_.data(), frame.depth_m.data(), frame.depth_m.size() * sizeof(float));
-  open3d::geometry::Image color;
-  color.Prepare(in.width_px, in.height_px, 3, 1);
-  auto rgbd = open3d::geometry::RGBDImage::CreateFromColorAndDepth(color, depth, 1.0, in.max_range_m, false);
-  const open3d::camera::PinholeCameraIntrinsic intrinsic(in.width_px, in.height_px, in.fx_px, in.fy_px, in.cx_px,
-                                                         in.cy_px);
-  const Eigen::Matrix4d extrinsic = frame.T_world_camera.inverse().matrix();
-  const double voxel = mapping::SurfaceMapOptions().voxel_size_m;
-  open3d::pipelines::integration::ScalableTSDFVolume volume(voxel, 4.0 * voxel,
-                                                            open3d::pipelines::integration::TSDFVolumeColorType::NoColor);
-  volume.Integrate(*rgbd, intrinsic, extrinsic);
+  const Open3dFrame f = MakeOpen3dFrame();
+  auto volume = MakeOpen3dVolume(f.voxel_m);
+  volume->Integrate(*f.rgbd, f.intrinsic, f.extrinsic);
   for (auto _ : state) {
-    volume.Integrate(*rgbd, intrinsic, extrinsic);
-    benchmark::DoNotOptimize(&volume);
+    volume->Integrate(*f.rgbd, f.intrinsic, f.extrinsic);
+    benchmark::DoNotOptimize(volume.get());
   }
 }
 BENCHMARK(BM_Open3DTsdfIntegrateRevisit)->Unit(benchmark::kMillisecond);
