@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <utility>
 #include <set>
 
 #include "objscan/common/error.h"
@@ -133,7 +135,7 @@ class SceneFileParser {
     return wall;
   }
 
-  world::SceneObject ParseObject(const YAML::Node& node, std::size_t index, const std::string& element) const {
+  world::SceneObject ParseObject(const YAML::Node& node, std::size_t index, const std::string& element) {
     if (!node.IsMap()) throw InputError(Where(element) + ": expected a mapping");
     CheckKeys(node, element, {"mesh", "box", "category", "pose", "scale", "up_axis", "name", "model"});
     world::SceneObject object;
@@ -160,7 +162,7 @@ class SceneFileParser {
         throw InputError(Where(element) + ": up_axis '" + mesh_options.up_axis + "' is not one of auto, z, y");
       }
       try {
-        object.mesh = LoadMesh(mesh_path.string(), mesh_options);
+        object.mesh = CachedMesh(mesh_path.lexically_normal().string(), mesh_options);
       } catch (const InputError& e) {
         throw InputError(Where(element) + ": " + e.what());
       }
@@ -191,7 +193,17 @@ class SceneFileParser {
   }
 
   std::string path_;
+  // A mesh file is imported once per scene file, whatever the number of objects naming it: a room
+  // of twelve identical chairs costs one Assimp import, not twelve.
+  const geometry::TriangleMesh& CachedMesh(const std::string& path, const MeshLoadOptions& options) {
+    const std::pair<std::string, std::string> key(path, options.up_axis);
+    auto it = mesh_cache_.find(key);
+    if (it == mesh_cache_.end()) it = mesh_cache_.emplace(key, LoadMesh(path, options)).first;
+    return it->second;
+  }
+
   fs::path base_dir_;
+  std::map<std::pair<std::string, std::string>, geometry::TriangleMesh> mesh_cache_;
 };
 
 }  // namespace

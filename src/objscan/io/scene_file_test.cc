@@ -67,6 +67,29 @@ TEST(SceneFileTest, JsonWithoutFloor) {
   EXPECT_NEAR(scene.Bounds().max_m.z(), 2.0, 1e-6);
 }
 
+// One mesh file named by several objects is imported once, and each object still gets its own
+// scale and axis: the shared import must not carry one object's transform to the next.
+TEST(SceneFileTest, RepeatedMeshKeepsEachObjectsScaleAndAxis) {
+  TempDir dir;
+  WriteText(dir.File("m/box.obj"), "v 0 0 0\nv 1 0 0\nv 0 2 0\nv 0 0 3\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n");
+  WriteText(dir.File("r.yaml"),
+            "floor: false\n"
+            "objects:\n"
+            "  - {mesh: m/box.obj, scale: 2}\n"
+            "  - {mesh: ./m/box.obj}\n"
+            "  - {mesh: m/box.obj, up_axis: y}\n"
+            "  - {mesh: m/../m/box.obj}\n");
+  const world::Scene scene = LoadSceneFile(dir.File("r.yaml"));
+  ASSERT_EQ(scene.objects().size(), 4u);
+  const auto extent = [&](std::size_t i) { return scene.ObjectBounds(scene.objects()[i]).max_m; };
+  EXPECT_LT((extent(0) - Eigen::Vector3d(2, 4, 6)).norm(), 1e-6) << extent(0).transpose();
+  EXPECT_LT((extent(1) - Eigen::Vector3d(1, 2, 3)).norm(), 1e-6) << extent(1).transpose();
+  // Y-up file: +Y (2) becomes +Z and +Z (3) becomes -Y.
+  EXPECT_LT((extent(2) - Eigen::Vector3d(1, 0, 2)).norm(), 1e-6) << extent(2).transpose();
+  EXPECT_NEAR(scene.ObjectBounds(scene.objects()[2]).min_m.y(), -3, 1e-6);
+  EXPECT_LT((extent(3) - Eigen::Vector3d(1, 2, 3)).norm(), 1e-6) << extent(3).transpose();
+}
+
 TEST(SceneFileTest, BadFilesNameTheKeyOrElement) {
   TempDir dir;
   WriteText(dir.File("cube.obj"), kCubeObj);
