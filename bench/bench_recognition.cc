@@ -193,14 +193,8 @@ BENCHMARK(BM_LloydKeypoints)->Unit(benchmark::kMillisecond);
 // Both include the same PCA normals, thinning and keypoint lookup; only the histograms differ.
 void BM_Fpfh(benchmark::State& state) {
   geometry::PointCloud cloud;
-  testing::SofaLike(0.01, &cloud.points, &cloud.normals);
-  Rng noise(4);
-  for (auto& p : cloud.points) p += Eigen::Vector3f(noise.Normal(0, 0.002), noise.Normal(0, 0.002), noise.Normal(0, 0.002));
-  Rng rng(2);
-  KeypointOptions keypoint_options;
-  keypoint_options.num_keypoints = 200;
   std::vector<Eigen::Vector3f> keypoints;
-  for (int i : SampleKeypointsLloyd(cloud.points, keypoint_options, &rng)) keypoints.push_back(cloud.points[i]);
+  testing::NoisyShapeWithKeypoints(&testing::SofaLike, 200, &cloud, &keypoints);
   const FpfhDescriptor fpfh{DescriptorOptions()};
   const bool with_pcl = state.range(0) == 1;
   std::vector<float> descriptors;

@@ -71,25 +71,32 @@ std::string Replace(std::string text, const std::string& from, const std::string
   return text;
 }
 
+// The lines of `text` without their line ends; a text ending in a line end has no empty last line.
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    lines.push_back(text.substr(pos, end - pos));
+    pos = end + 1;
+  }
+  return lines;
+}
+
 // Splits at lines equal to `separator` (dropped with the line end before them).
 std::vector<std::string> SplitAtLines(const std::string& text, const std::string& separator) {
   std::vector<std::string> parts(1);
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    std::size_t end = text.find('\n', pos);
-    const bool last = end == std::string::npos;
-    if (last) end = text.size();
-    const std::string line = text.substr(pos, end - pos);
+  for (const std::string& line : Lines(text)) {
     if (line == separator) {
       if (!parts.back().empty() && parts.back().back() == '\n') parts.back().pop_back();  // the separator's
       parts.emplace_back();
     } else {
-      parts.back() += line;
-      if (!last) parts.back() += '\n';
+      parts.back() += line + '\n';
     }
-    if (last) break;
-    pos = end + 1;
   }
+  // Every line was given its end back; the text's last line may not have had one.
+  if (!text.empty() && text.back() != '\n' && !parts.back().empty()) parts.back().pop_back();
   return parts;
 }
 
@@ -142,14 +149,7 @@ void Load(Target target, const std::string& input) {
       }
       std::vector<std::string> overrides;
       for (std::size_t i = 1; i < parts.size(); ++i) {
-        std::size_t pos = 0;
-        const std::string& text = parts[i];
-        while (pos < text.size()) {
-          std::size_t end = text.find('\n', pos);
-          if (end == std::string::npos) end = text.size();
-          overrides.push_back(text.substr(pos, end - pos));
-          pos = end + 1;
-        }
+        for (const std::string& line : Lines(parts[i])) overrides.push_back(line);
       }
       scanning::LoadSystemConfig(config_file, overrides);
       return;

@@ -16,14 +16,8 @@ namespace {
 TEST(FpfhDescriptorTest, MatchesPclFpfhEstimation) {
   for (testing::ShapeFn shape : {&testing::ChairLike, &testing::SofaLike}) {
     geometry::PointCloud cloud;
-    shape(0.01, &cloud.points, &cloud.normals);
-    Rng noise(4);
-    for (auto& p : cloud.points) p += Eigen::Vector3f(noise.Normal(0, 0.002), noise.Normal(0, 0.002), noise.Normal(0, 0.002));
-    Rng rng(2);
-    KeypointOptions ko;
-    ko.num_keypoints = 200;
     std::vector<Eigen::Vector3f> keypoints;
-    for (int i : SampleKeypointsLloyd(cloud.points, ko, &rng)) keypoints.push_back(cloud.points[i]);
+    testing::NoisyShapeWithKeypoints(shape, 200, &cloud, &keypoints);
     keypoints.push_back(Eigen::Vector3f(50.f, 50.f, 50.f));  // no support: an all-zero row
     const FpfhDescriptor fpfh{DescriptorOptions()};
     std::vector<float> ours, pcl;

@@ -4,12 +4,27 @@
 #include <string>
 #include <vector>
 
+#include "objscan/common/rng.h"
 #include "objscan/recognition/database_builder.h"
+#include "objscan/recognition/keypoints.h"
 #include "objscan/recognition/test_shapes.h"
 
 namespace objscan::recognition::testing {
 
 using ShapeFn = void (*)(double, std::vector<Eigen::Vector3f>*, std::vector<Eigen::Vector3f>*);
+
+// A shape's surface at 1 cm spacing with 2 mm Gaussian noise, and num_keypoints Lloyd keypoints on
+// it (fixed seeds): the input the FPFH test and the FPFH benchmark share.
+inline void NoisyShapeWithKeypoints(ShapeFn shape, int num_keypoints, geometry::PointCloud* cloud,
+                                    std::vector<Eigen::Vector3f>* keypoints) {
+  shape(0.01, &cloud->points, &cloud->normals);
+  Rng noise(4);
+  for (auto& p : cloud->points) p += Eigen::Vector3f(noise.Normal(0, 0.002), noise.Normal(0, 0.002), noise.Normal(0, 0.002));
+  Rng rng(2);
+  KeypointOptions options;
+  options.num_keypoints = num_keypoints;
+  for (int i : SampleKeypointsLloyd(cloud->points, options, &rng)) keypoints->push_back(cloud->points[i]);
+}
 
 inline ModelScan ShapeScan(ShapeFn shape, double spacing_m) {
   ModelScan scan;
