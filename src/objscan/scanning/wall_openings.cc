@@ -97,6 +97,9 @@ WallOpeningResult ClassifyWallOpening(const std::vector<Eigen::Vector3f>& points
   const bool off_floor = low - floor_z >= options.min_sill_height_m;
   if (off_floor && result.share >= options.window_min_share) {
     result.verdict = WallOpeningVerdict::kWindow;
+  } else if (labelled_window && !off_floor && result.share >= options.window_keep_share &&
+             options.doorways_are_not_windows) {
+    result.verdict = WallOpeningVerdict::kNotWindow;  // in an opening down to the floor: a doorway
   } else if (labelled_window && result.share < options.window_keep_share) {
     const bool hangs_on_wall = off_floor && options.hanging_window_max_distance_m >= 0.0 &&
                                HangingWall(points_world, structure, options.min_depth_m,

@@ -31,6 +31,11 @@ struct WallOpeningOptions {
   double window_min_share = 0.5;  // share of an object's points in openings that makes it a window
   double window_keep_share = 0.1; // a window label needs at least this share
   double min_sill_height_m = 0.2; // a window's lowest point is this far above the floor (doors reach it)
+  // A window label goes from an object with window_keep_share of its points in wall openings that
+  // reaches the floor (its lowest points within min_sill_height_m of it): an opening down to the
+  // floor is a doorway, and what recognition fits a window model to there is a door's frame, its
+  // reveals or the room beyond. false = the sill only decides which objects are made windows.
+  bool doorways_are_not_windows = true;
   // A window label also stays on an object off the floor (min_sill_height_m) of whose points at
   // least hanging_window_min_share lie in front of one wall, within hanging_window_max_distance_m:
   // a window mounted on the wall's face with no opening behind it, as in the SUNCG rooms of the OASC
@@ -74,6 +79,7 @@ struct WallOpeningOptions {
     v("window_min_share", window_min_share);
     v("window_keep_share", window_keep_share);
     v("min_sill_height_m", min_sill_height_m);
+    v("doorways_are_not_windows", doorways_are_not_windows);
     v("hanging_window_max_distance_m", hanging_window_max_distance_m);
     v("hanging_window_min_share", hanging_window_min_share);
     v("join_gap_m", join_gap_m);

@@ -63,6 +63,29 @@ TEST(WallOpeningTest, ThingsInTheRoomAreNotWindows) {
             WallOpeningVerdict::kNotWindow);
 }
 
+// An opening down to the floor is a doorway: a window label on what lies in it (a door's frame and
+// reveals) goes, while the same object off the floor keeps it; with doorways_are_not_windows off,
+// the sill only decides which objects are made windows.
+TEST(WallOpeningTest, AWindowLabelInAnOpeningDownToTheFloorGoes) {
+  const mapping::StructureResult room = OneWallRoom();
+  WallOpeningOptions options;
+  // A reveal 6 cm behind the wall plane from the floor to 2 m, and twice as many points of wall beside it.
+  std::vector<Eigen::Vector3f> doorway = Pane(-0.06, 1.0, 1.2, 0.0, 2.0);
+  Append(Pane(0.0, 1.22, 1.62, 0.0, 2.0), &doorway);
+  const WallOpeningResult r = ClassifyWallOpening(doorway, room, true, options);
+  EXPECT_GT(r.share, options.window_keep_share);
+  EXPECT_LT(r.share, options.window_min_share);
+  EXPECT_EQ(r.verdict, WallOpeningVerdict::kNotWindow);
+  // Nothing is made of it when recognition did not call it a window.
+  EXPECT_EQ(ClassifyWallOpening(doorway, room, false, options).verdict, WallOpeningVerdict::kNoChange);
+  // The same reveal and wall from a 0.9 m sill up: a window's, the label stays.
+  std::vector<Eigen::Vector3f> window = Pane(-0.06, 1.0, 1.2, 0.9, 2.0);
+  Append(Pane(0.0, 1.22, 1.62, 0.9, 2.0), &window);
+  EXPECT_EQ(ClassifyWallOpening(window, room, true, options).verdict, WallOpeningVerdict::kNoChange);
+  options.doorways_are_not_windows = false;
+  EXPECT_EQ(ClassifyWallOpening(doorway, room, true, options).verdict, WallOpeningVerdict::kNoChange);
+}
+
 // A window mounted on the wall's face (SUNCG rooms: no opening behind it) keeps its label: off the
 // floor, within hanging_window_max_distance_m in front of the wall. It is not made a window when
 // recognition did not call it one.
