@@ -64,7 +64,9 @@ TEST(RoomPartitionTest, DoorsAndDoorwaysSeparateRoomsAndAWideOpeningJoinsThem) {
     const int at_door = rooms.RoomAt(4.0, 2.0);
     EXPECT_TRUE(at_door == west || at_door == east);
     EXPECT_EQ(rooms.RoomAt(30.0, 30.0), -1);
-    if (door) EXPECT_EQ(rooms.RoomAt(4.0, 2.0, 0.0), -1) << "the door's own cells are in no room";
+    if (door) {
+      EXPECT_EQ(rooms.RoomAt(4.0, 2.0, 0.0), -1) << "the door's own cells are in no room";
+    }
   }
   // A 2 m wide opening joins the two halves into one room.
   const RoomPartition open = RoomPartition::FromScene(TwoRooms(2.0, false));
@@ -105,7 +107,9 @@ TEST(RoomPartitionTest, TheAwsSmallHouseSplitsAtItsDoorways) {
     const int r = rooms.RoomAt(c.x(), c.y());
     if (r >= 0) ++objects_in[static_cast<std::size_t>(r)];
     if (o.category == Category::kSofa) sofa_room = r;
-    if (o.category == Category::kChair || o.category == Category::kBed) EXPECT_GE(r, 0) << o.name;
+    if (o.category == Category::kChair || o.category == Category::kBed) {
+      EXPECT_GE(r, 0) << o.name;
+    }
   }
   int furnished = 0;
   for (const Room& r : rooms.rooms()) {

@@ -19,8 +19,6 @@ using testing::ByName;
 using testing::ExpectBox;
 using testing::WriteText;
 
-constexpr double kHalfPi = 1.5707963267948966;
-
 std::string World(const std::string& body, const std::string& version = "1.7") {
   return "<?xml version='1.0'?>\n<sdf version='" + version + "'><world name='default'>\n" + body + "</world></sdf>\n";
 }

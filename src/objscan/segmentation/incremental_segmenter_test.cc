@@ -389,7 +389,7 @@ Scanned ScanCounterRun(bool slot_split) {
   }
   IncrementalSegmenterOptions options;
   options.slot_split.enabled = slot_split;
-  Scanned s{mapping::SurfaceMap(), IncrementalSegmenter(options)};
+  Scanned s{mapping::SurfaceMap(), IncrementalSegmenter(options), eval::GroundTruthVotes()};
   std::vector<geometry::Pose3> poses;
   for (double y : {-0.5, 0.0, 0.5}) poses.push_back(LookAt(Eigen::Vector3d(4.2, y, 1.4), Eigen::Vector3d(0.3, 0.0, 0.45)));
   for (double y : {-1.3, -0.6, 0.0, 0.6, 1.3}) {
