@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <utility>
 #include <set>
+#include <utility>
 
 #include "objscan/common/error.h"
 #include "objscan/geometry/pose.h"
@@ -192,7 +192,6 @@ class SceneFileParser {
     return object;
   }
 
-  std::string path_;
   // A mesh file is imported once per scene file, whatever the number of objects naming it: a room
   // of twelve identical chairs costs one Assimp import, not twelve.
   const geometry::TriangleMesh& CachedMesh(const std::string& path, const MeshLoadOptions& options) {
@@ -202,6 +201,7 @@ class SceneFileParser {
     return it->second;
   }
 
+  std::string path_;
   fs::path base_dir_;
   std::map<std::pair<std::string, std::string>, geometry::TriangleMesh> mesh_cache_;
 };
