@@ -39,7 +39,11 @@ double ErrorBreakdown::Share(OutputOutcome outcome) const {
 }
 
 void ErrorBreakdown::Add(const ErrorBreakdown& other) {
-  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += other.counts[i];
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    counts[i] += other.counts[i];
+    on_piece[i] += other.on_piece[i];
+  }
+  share_known += other.share_known;
 }
 
 void ConfusionMatrix::Add(const std::string& row, const std::string& column, int count) {
@@ -136,6 +140,12 @@ ErrorAnalysis AnalyseErrors(const std::vector<GroundTruthInstance>& ground_truth
     }
     analysis.output_outcomes.push_back(outcome);
     ++analysis.breakdown.counts[static_cast<std::size_t>(outcome)];
+    if (out.instance_share >= 0.0) {
+      ++analysis.breakdown.share_known;
+      if (on_object && out.instance_share < kPieceMaxInstanceShare) {
+        ++analysis.breakdown.on_piece[static_cast<std::size_t>(outcome)];
+      }
+    }
     const std::string row = on_object ? world::CategoryName(g->category) : ConfusionMatrix::kBackgroundRow;
     analysis.confusion.Add(row, world::CategoryName(out.category));
     if (on_object) reported_instances.insert(g->instance_id);

@@ -29,11 +29,20 @@ const char* OutputOutcomeName(OutputOutcome outcome);
 // All classes in report order: correct first, then the errors from the one the issue counts most.
 const std::array<OutputOutcome, kNumOutputOutcomes>& OutputOutcomesInReportOrder();
 
+// An output holding less than this share of its ground-truth object's reconstructed surface lies on a
+// piece of it (OutputObject::instance_share).
+constexpr double kPieceMaxInstanceShare = 0.5;
+
 // Counts of reported labelled objects per error class.
 struct ErrorBreakdown {
   std::array<int, kNumOutputOutcomes> counts{};
+  // Of each class, the outputs on a piece of their object (instance_share known and below
+  // kPieceMaxInstanceShare), and how many outputs have their share known at all.
+  std::array<int, kNumOutputOutcomes> on_piece{};
+  int share_known = 0;
 
   int Count(OutputOutcome outcome) const { return counts[static_cast<std::size_t>(outcome)]; }
+  int OnPiece(OutputOutcome outcome) const { return on_piece[static_cast<std::size_t>(outcome)]; }
   int Total() const;
   // Count / Total; 0 when nothing was reported.
   double Share(OutputOutcome outcome) const;

@@ -142,6 +142,39 @@ TEST(ErrorAnalysisTest, NothingReportedMissesEveryObjectAndDuplicateIdsThrow) {
   EXPECT_THROW(AnalyseErrors(twice, room.outputs, room.database), InputError);
 }
 
+// Each output's share of its object (metrics.h: OutputObject::instance_share) sorts it as on a piece
+// (below half) or not, per class; outputs without a share (negative) are not counted as known.
+TEST(ErrorAnalysisTest, OutputsOnAPieceOfTheirObjectAreCountedPerClass) {
+  HandMadeRoom room;
+  const std::vector<double> shares = {0.9,   // a: correct, whole
+                                      0.1,   // b: duplicate piece, on a piece
+                                      0.3,   // c: wrong category, on a piece
+                                      0.5,   // d: `other` object, half is no piece
+                                      0.2,   // e: background: never on a piece
+                                      -1.0,  // f: unknown
+                                      0.49,  // g: duplicate piece, on a piece
+                                      0.51,  // h: correct, whole
+                                      -1.0,  // i: unknown
+                                      0.0};  // j: correct with no share of its object: on a piece
+  for (std::size_t o = 0; o < shares.size(); ++o) room.outputs[o].instance_share = shares[o];
+  const ErrorAnalysis a = AnalyseErrors(room.truth, room.outputs, room.database);
+  using O = OutputOutcome;
+  EXPECT_EQ(a.breakdown.share_known, 8);
+  EXPECT_EQ(a.breakdown.OnPiece(O::kCorrect), 1);
+  EXPECT_EQ(a.breakdown.OnPiece(O::kDuplicatePiece), 2);
+  EXPECT_EQ(a.breakdown.OnPiece(O::kWrongCategory), 1);
+  EXPECT_EQ(a.breakdown.OnPiece(O::kOtherObject), 0);
+  EXPECT_EQ(a.breakdown.OnPiece(O::kBackgroundOrStructure), 0);
+  ErrorBreakdown sum = a.breakdown;
+  sum.Add(a.breakdown);
+  EXPECT_EQ(sum.share_known, 16);
+  EXPECT_EQ(sum.OnPiece(O::kDuplicatePiece), 4);
+  // Without shares (the default), nothing is known and nothing is on a piece.
+  const ErrorAnalysis none = AnalyseErrors(room.truth, HandMadeRoom().outputs, room.database);
+  EXPECT_EQ(none.breakdown.share_known, 0);
+  EXPECT_EQ(none.breakdown.on_piece, (std::array<int, kNumOutputOutcomes>{}));
+}
+
 TEST(ErrorAnalysisTest, OutcomeNames) {
   EXPECT_STREQ(OutputOutcomeName(OutputOutcome::kCorrect), "correct");
   EXPECT_STREQ(OutputOutcomeName(OutputOutcome::kWrongCategory), "wrong_category");

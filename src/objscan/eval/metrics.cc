@@ -32,6 +32,39 @@ int MajorityInstance(const std::vector<int>& point_instances) {
   return best;
 }
 
+std::vector<ObjectInstanceShare> ObjectInstanceShares(const std::vector<int>& point_object,
+                                                      const std::vector<int>& point_instance, int num_objects) {
+  if (point_object.size() != point_instance.size()) {
+    throw InputError("ObjectInstanceShares: " + std::to_string(point_object.size()) + " object ids for " +
+                     std::to_string(point_instance.size()) + " instance ids");
+  }
+  std::vector<std::map<int, int>> votes(static_cast<std::size_t>(std::max(0, num_objects)));
+  std::map<int, int> instance_points;
+  for (std::size_t i = 0; i < point_object.size(); ++i) {
+    const int instance = point_instance[i];
+    if (instance > 0) ++instance_points[instance];
+    const int object = point_object[i];
+    if (object < 0) continue;
+    if (object >= num_objects) {
+      throw InputError("ObjectInstanceShares: object index " + std::to_string(object) + " of " +
+                       std::to_string(num_objects) + " objects");
+    }
+    if (instance > 0) ++votes[static_cast<std::size_t>(object)][instance];
+  }
+  std::vector<ObjectInstanceShare> shares(votes.size());
+  for (std::size_t o = 0; o < votes.size(); ++o) {
+    int best = 0;
+    for (const auto& [instance, n] : votes[o]) {  // ascending ids: a tie keeps the smaller
+      if (n > best) {
+        best = n;
+        shares[o].instance = instance;
+        shares[o].share = static_cast<double>(n) / instance_points[instance];
+      }
+    }
+  }
+  return shares;
+}
+
 bool IsScoredCategory(world::Category category) {
   return !world::IsStructural(category) && category != world::Category::kOther;
 }

@@ -32,11 +32,26 @@ struct OutputObject {
   // The ground-truth instance holding most of the object's points (see MajorityInstance);
   // world::kNoInstance (or any id not in the ground truth) when that is unlabelled background.
   int majority_instance = world::kNoInstance;
+  // The share of that instance's reconstructed surface the object holds, in [0, 1]; negative when
+  // unknown (runs written before it was recorded). Error analysis only: the metrics ignore it.
+  double instance_share = -1.0;
 };
 
 // The most frequent value of `point_instances` (ties: the smallest id); world::kNoInstance values
 // (background) take part in the vote like any id. world::kNoInstance for an empty list.
 int MajorityInstance(const std::vector<int>& point_instances);
+
+// Each object's ground-truth instance and how much of that instance it holds.
+struct ObjectInstanceShare {
+  int instance = world::kNoInstance;  // the instance (id > 0) holding most of its points; none: kNoInstance
+  double share = 0.0;                 // its points on that instance / all points of that instance
+};
+// `point_object[i]` is point i's object in [0, num_objects) or -1 for a point in no object (it still
+// counts in its instance's total); `point_instance[i]` its ground-truth instance (<= 0: background,
+// which never becomes an object's instance). Ties keep the smaller instance id. Throws InputError when
+// the sizes differ or an object index is out of range.
+std::vector<ObjectInstanceShare> ObjectInstanceShares(const std::vector<int>& point_object,
+                                                      const std::vector<int>& point_instance, int num_objects);
 
 struct RecognitionCounts {
   int ground_truth = 0;    // |ground-truth set|

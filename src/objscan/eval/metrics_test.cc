@@ -79,6 +79,28 @@ TEST(RecognitionTest, MajorityInstance) {
   EXPECT_EQ(MajorityInstance({5, 4, 5, 4}), 4);  // tie: smaller id
 }
 
+// Points: instance 1 has 4 (3 in object 0, 1 in no object), instance 2 has 4 (1 in object 0, 3 in
+// object 1), background 0 has 3 (2 in object 2, which so has no instance; 1 in object 1).
+TEST(RecognitionTest, ObjectInstanceSharesCountPointsInNoObject) {
+  const std::vector<int> object = {0, 0, 0, -1, 0, 1, 1, 1, 2, 2, 1};
+  const std::vector<int> instance = {1, 1, 1, 1, 2, 2, 2, 2, 0, 0, 0};
+  const std::vector<ObjectInstanceShare> s = ObjectInstanceShares(object, instance, 4);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(s[0].instance, 1);
+  EXPECT_DOUBLE_EQ(s[0].share, 0.75);
+  EXPECT_EQ(s[1].instance, 2);
+  EXPECT_DOUBLE_EQ(s[1].share, 0.75);
+  EXPECT_EQ(s[2].instance, world::kNoInstance);  // background only
+  EXPECT_DOUBLE_EQ(s[2].share, 0.0);
+  EXPECT_EQ(s[3].instance, world::kNoInstance);  // no points
+  // A tie keeps the smaller instance id.
+  const std::vector<ObjectInstanceShare> tie = ObjectInstanceShares({0, 0, -1}, {5, 3, 3}, 1);
+  EXPECT_EQ(tie[0].instance, 3);
+  EXPECT_DOUBLE_EQ(tie[0].share, 0.5);
+  EXPECT_THROW(ObjectInstanceShares({0}, {1, 2}, 1), InputError);
+  EXPECT_THROW(ObjectInstanceShares({1}, {1}, 1), InputError);
+}
+
 TEST(RecognitionTest, RecallPrecisionWithDuplicateDetection) {
   const std::vector<GroundTruthInstance> gt = {
       {1, Category::kChair, true},   {2, Category::kChair, true}, {3, Category::kMonitor, false},

@@ -108,6 +108,9 @@ void AnalyseRunErrors(const Json& j, const std::string& source, RunSummary* r) {
       if (!IsScoredCategory(out.category)) continue;  // recognised as `other`: no output
       out.majority_instance = o.contains("gt_instance") && o["gt_instance"].is_number() ? o["gt_instance"].get<int>()
                                                                                        : world::kNoInstance;
+      if (o.contains("gt_instance_share") && o["gt_instance_share"].is_number()) {
+        out.instance_share = o["gt_instance_share"].get<double>();
+      }
       outputs.push_back(out);
     }
   }
@@ -674,7 +677,14 @@ Json BreakdownJson(const ErrorBreakdown& b) {
     counts[OutputOutcomeName(o)] = b.Count(o);
     shares[OutputOutcomeName(o)] = b.Share(o);
   }
-  return Json{{"reported", b.Total()}, {"counts", counts}, {"shares", shares}};
+  Json j{{"reported", b.Total()}, {"counts", counts}, {"shares", shares}};
+  if (b.share_known > 0) {
+    Json on_piece = Json::object();
+    for (OutputOutcome o : OutputOutcomesInReportOrder()) on_piece[OutputOutcomeName(o)] = b.OnPiece(o);
+    j["share_known"] = b.share_known;
+    j["on_piece"] = on_piece;
+  }
+  return j;
 }
 
 Json ConfusionJson(const ConfusionMatrix& m) {
@@ -1014,6 +1024,28 @@ std::string ReportMarkdown(const Report& report) {
         md << ' ' << e->breakdown.Count(o) << " (" << Pct(e->breakdown.Share(o)) << ") |";
       }
       md << '\n';
+    }
+    bool any_share = false;
+    for (const MethodErrors* e : rows) any_share = any_share || e->breakdown.share_known > 0;
+    if (any_share) {
+      md << "\nOn a piece: of each class, the reported objects holding less than half of their ground-truth "
+            "object's reconstructed surface (the rest of it unlabelled or in other objects); counted over the "
+            "reported objects whose run records that share (`gt_instance_share` in run.json).\n\n";
+      md << "| Method | share known |";
+      for (OutputOutcome o : OutputOutcomesInReportOrder()) {
+        if (o != OutputOutcome::kBackgroundOrStructure) md << ' ' << OutcomeLabel(o) << ", on a piece |";
+      }
+      md << "\n|---|---|";
+      for (std::size_t k = 1; k < OutputOutcomesInReportOrder().size(); ++k) md << "---|";
+      md << '\n';
+      for (const MethodErrors* e : rows) {
+        md << "| " << (e->method == "all" ? std::string("**All methods**") : "`" + e->method + "`") << " | "
+           << e->breakdown.share_known << " |";
+        for (OutputOutcome o : OutputOutcomesInReportOrder()) {
+          if (o != OutputOutcome::kBackgroundOrStructure) md << ' ' << e->breakdown.OnPiece(o) << " |";
+        }
+        md << '\n';
+      }
     }
     // The matrix of "ours" (the method the report is about), else of the first method.
     const MethodErrors* shown = rows.front();

@@ -527,6 +527,7 @@ TEST(ReportTest, ErrorClassesAndConfusionMatrixOfReportedObjects) {
   EXPECT_NE(md.find("| Background/structure | 1 |  |  |  |  | 2 |  | 3 |"), std::string::npos);
   EXPECT_NE(md.find("| total | 2 | 4 | 1 | 1 | 1 | 3 | 3 | |"), std::string::npos);
   EXPECT_NE(md.find("| 10: 3 / 1 / 2 / 1 / 3 |"), std::string::npos);
+  EXPECT_EQ(md.find("On a piece"), std::string::npos);  // no run records gt_instance_share
 
   // results.json and the JSON the commands print.
   const nlohmann::json j = nlohmann::json::parse(ReadText(dir.path() / "report" / "results.json"));
@@ -542,6 +543,41 @@ TEST(ReportTest, ErrorClassesAndConfusionMatrixOfReportedObjects) {
   EXPECT_EQ(j["confusion"]["frontier"]["counts"], nlohmann::json({{1}}));
   EXPECT_EQ(j["confusion"]["ours"]["columns"].back(), "missed");
   EXPECT_EQ(j["per_run"][1]["reported_objects"]["counts"]["background_or_structure"], 3);
+}
+
+// Runs that record each object's share of its ground-truth object (gt_instance_share) get the "on a
+// piece" counts per class: room 2's sofa holds 0.8 of the sofa (correct, whole), its chair-labelled
+// second piece 0.2 of it (a duplicate piece on a piece); room 1 records no shares.
+TEST(ReportTest, OutputsOnAPieceOfTheirObjectAreCountedPerClass) {
+  TempDir dir;
+  for (auto [path, text] : ErrorAnalysisRuns()) {
+    if (path == fs::path("runs") / "bedroom-2" / "ours") {
+      nlohmann::json j = nlohmann::json::parse(text);
+      j["objects"][0]["gt_instance_share"] = 0.8;
+      j["objects"][1]["gt_instance_share"] = 0.2;
+      text = j.dump(2);
+    }
+    WriteText(dir.path() / path / "run.json", text);
+  }
+  const Report report = BuildReport(CollectRuns({dir.path().string()}));
+  ASSERT_EQ(report.errors.size(), 3u);
+  const ErrorBreakdown& ours = report.errors[0].breakdown;
+  EXPECT_EQ(ours.share_known, 2);
+  EXPECT_EQ(ours.on_piece, (std::array<int, kNumOutputOutcomes>{0, 0, 1, 0, 0}));
+  EXPECT_EQ(report.errors[1].breakdown.share_known, 0);  // frontier
+  EXPECT_EQ(report.errors[2].breakdown.OnPiece(OutputOutcome::kDuplicatePiece), 1);
+
+  const std::string md = ReportMarkdown(report);
+  EXPECT_NE(md.find("| Method | share known | correct, on a piece | wrong category, on a piece | duplicate piece, on a "
+                    "piece | `other` object, on a piece |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| `ours` | 2 | 0 | 0 | 1 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `frontier` | 0 | 0 | 0 | 0 | 0 |"), std::string::npos);
+  const nlohmann::json reported = nlohmann::json::parse(ReportedObjectsJson(report));
+  EXPECT_EQ(reported["by_method"][0]["share_known"], 2);
+  EXPECT_EQ(reported["by_method"][0]["on_piece"]["duplicate_piece"], 1);
+  EXPECT_FALSE(reported["by_method"][1].contains("on_piece"));
 }
 
 TEST(ReportTest, NoErrorAnalysisWithoutInstancesAndUnknownCategoriesThrow) {

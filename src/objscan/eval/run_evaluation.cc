@@ -319,27 +319,25 @@ void RunEvaluator::ObserveAnalysis(const scanning::Scanner& scanner) {
 void RunEvaluator::AssignGroundTruthInstances(const scanning::Scanner& scanner, scanning::RunRecord* record) const {
   const Impl& m = *impl_;
   const mapping::SurfaceMap& map = scanner.surface_map();
-  std::map<std::int32_t, std::size_t> object_of_label;
+  std::map<std::int32_t, int> object_of_label;
   for (std::size_t i = 0; i < record->objects.size(); ++i) {
-    for (auto l : record->objects[i].labels) object_of_label[l] = i;
+    for (auto l : record->objects[i].labels) object_of_label[l] = static_cast<int>(i);
   }
-  std::vector<std::map<std::int32_t, int>> votes(record->objects.size());
+  // Over the non-structural surface: an instance's total counts its elements in no object too, so a
+  // share below 1 says the object holds only a piece of what the robot reconstructed of it.
+  std::vector<int> element_object, element_instance;
   for (std::size_t e = 0; e < map.size(); ++e) {
     if (map.structure(e) != mapping::Structure::kNone) continue;
     auto it = object_of_label.find(map.label(e));
-    if (it == object_of_label.end()) continue;
-    ++votes[it->second][m.votes.Instance(e)];
+    element_object.push_back(it == object_of_label.end() ? -1 : it->second);
+    element_instance.push_back(m.votes.Instance(e));
   }
+  const std::vector<ObjectInstanceShare> shares =
+      ObjectInstanceShares(element_object, element_instance, static_cast<int>(record->objects.size()));
   for (std::size_t i = 0; i < record->objects.size(); ++i) {
     scanning::ObjectRecord& o = record->objects[i];
-    o.gt_instance = -1;
-    int best = 0;
-    for (const auto& [instance, n] : votes[i]) {
-      if (n > best && instance > 0) {
-        best = n;
-        o.gt_instance = instance;
-      }
-    }
+    o.gt_instance = shares[i].instance > 0 ? shares[i].instance : -1;
+    o.gt_instance_share = o.gt_instance > 0 ? shares[i].share : 0.0;
   }
 }
 
@@ -358,7 +356,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   for (const auto& o : record.objects) {
     if (!o.category || !IsScoredCategory(*o.category)) continue;
     if (!o.complete && o.objectness < m.config.eval.recognized_min_objectness) continue;
-    outputs.push_back({*o.category, o.gt_instance > 0 ? o.gt_instance : world::kNoInstance});
+    outputs.push_back({*o.category, o.gt_instance > 0 ? o.gt_instance : world::kNoInstance, o.gt_instance_share});
     auto r = m.room_of_instance.find(o.gt_instance);
     output_room.push_back(r != m.room_of_instance.end()
                               ? r->second

@@ -140,7 +140,10 @@ std::string RunJson(const RunOutputInputs& in) {
       }
       obj["alternatives"] = alternatives;
     }
-    if (o.gt_instance > 0) obj["gt_instance"] = o.gt_instance;
+    if (o.gt_instance > 0) {
+      obj["gt_instance"] = o.gt_instance;
+      obj["gt_instance_share"] = o.gt_instance_share;
+    }
     objects.push_back(obj);
   }
   j["objects"] = objects;

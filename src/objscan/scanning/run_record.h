@@ -91,6 +91,7 @@ struct ObjectRecord {
   std::vector<std::int32_t> labels;             // its pre-segment labels
   std::vector<LabelChange> label_changes;       // what the report rules changed, in order
   int gt_instance = -1;                         // majority ground-truth instance (set by eval only)
+  double gt_instance_share = 0.0;               // share of that instance's reconstructed surface held here
 };
 
 struct TrajectorySample {
