@@ -23,7 +23,6 @@ void PostSegmenterOptions::Validate() const {
                   "must be max, mean or min");
   config::RequireInRange("merge_min_gain", merge_min_gain, -1.0, 1.0);
   config::RequireInRange("object_merge_min_gain", object_merge_min_gain, -1.0, 1.0);
-  config::RequireInRange("object_merge_complete_min_gain", object_merge_complete_min_gain, -1.0, 1.0);
   alpha_expansion.Validate();
 }
 
@@ -233,17 +232,12 @@ void PostSegmenter::MergeAdjacentObjects(const PostSegmenterInput& input, const 
       // neighbour (0.83) because the neighbour's points gain more than its own lose.
       if (options_.object_merge_keep_larger_fit && fpq < (np >= nq ? fp : fq)) continue;
       const double gain = fpq - (np * fp + nq * fq) / std::max(1e-12, np + nq);
-      const bool either_complete = fp > options_.complete_objectness || fq > options_.complete_objectness;
-      const double min_gain =
-          either_complete ? std::max(options_.object_merge_min_gain, options_.object_merge_complete_min_gain)
-                          : options_.object_merge_min_gain;
-      if (!(gain >= min_gain)) continue;
       if (gain > best_gain) {
         best_gain = gain;
         best = k;
       }
     }
-    if (best_gain == -std::numeric_limits<double>::infinity()) return;  // no pair may merge
+    if (!(best_gain >= options_.object_merge_min_gain)) return;
     auto& keep = objs[static_cast<std::size_t>(pairs[best].first)];
     auto& gone = objs[static_cast<std::size_t>(pairs[best].second)];
     // The merged object keeps the label of its larger part.

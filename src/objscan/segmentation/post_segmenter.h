@@ -72,10 +72,6 @@ struct PostSegmenterOptions {
   // -25%; docs/results/oasc-dev-2026-11-26-loop-objects-of-interest.md).
   bool merge_objects = true;
   double object_merge_min_gain = 0.0;
-  // When one of the two is complete (objectness above complete_objectness), the union needs at least
-  // this gain too: a model already explains that object, so a negative object_merge_min_gain (a
-  // tolerance for pieces no model completes) does not let it absorb a neighbour.
-  double object_merge_complete_min_gain = 0.0;
   // And the union's objectness must be at least that of its larger part (by points): a
   // well-explained object does not absorb a badly explained neighbour. Off: on the OASC dev rooms it
   // blocks more useful merges than harmful ones (built-in database precision 34.2 -> 30.6, NBOs
@@ -96,7 +92,6 @@ struct PostSegmenterOptions {
     v("gain_reference", gain_reference);
     v("merge_objects", merge_objects);
     v("object_merge_min_gain", object_merge_min_gain);
-    v("object_merge_complete_min_gain", object_merge_complete_min_gain);
     v("object_merge_keep_larger_fit", object_merge_keep_larger_fit);
     v("alpha_expansion", alpha_expansion);
   }

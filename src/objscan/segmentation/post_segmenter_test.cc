@@ -48,31 +48,8 @@ class FakeMatcher : public ComponentMatcher {
     table_[ids] = r;
   }
 
-  // Full-model matches of a group, overriding the analytic rule.
-  void SetFullModels(std::vector<std::int32_t> ids, std::vector<std::pair<Category, double>> matches) {
-    std::sort(ids.begin(), ids.end());
-    MatchResult r;
-    for (auto [category, o] : matches) {
-      ModelMatch m;
-      m.category = category;
-      m.objectness = o;
-      m.full_model = true;
-      r.models.push_back(m);
-    }
-    std::sort(r.models.begin(), r.models.end(),
-              [](const ModelMatch& a, const ModelMatch& b) { return a.objectness > b.objectness; });
-    full_table_[ids] = r;
-  }
-
   MatchResult Match(const std::vector<std::int32_t>& ids, MatchScope scope) override {
     EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
-    if (scope == MatchScope::kFullModels) {
-      auto it = full_table_.find(ids);
-      if (it != full_table_.end()) {
-        ++full_calls;
-        return it->second;
-      }
-    }
     if (scope == MatchScope::kAllEntries) {
       ++all_calls;
       if (ids.size() == 1) ++component_calls;
@@ -127,7 +104,6 @@ class FakeMatcher : public ComponentMatcher {
  private:
   std::vector<TrueObject> objects_;
   std::map<std::vector<std::int32_t>, MatchResult> table_;
-  std::map<std::vector<std::int32_t>, MatchResult> full_table_;
 };
 
 // The paper's eq. (4) smoothness (the default is the objectness gain).
@@ -363,40 +339,6 @@ TEST(PostSegmenterTest, MergingAdjacentObjectsJoinsAPieceMealLampButNotItsNightS
   // A minimum gain above what the pieces offer (0.33 for the first merge) keeps them apart.
   options.object_merge_min_gain = 0.5;
   EXPECT_EQ(PostSegmenter(options, &matcher).Update(input).objects.size(), 4u);
-}
-
-// A complete window (component 1, F = 0.97) beside a curtain (2, F = 0.90), and a sofa in two pieces
-// (3 and 4, F = 0.93 and 0.92) that no model completes, each union a little worse than its parts'
-// mean (window + curtain 0.92, gain -0.015; sofa 0.915, gain -0.01). A tolerance of 0.03 for pieces
-// joins the sofa; the window, which a model completes, keeps off its curtain unless the complete
-// objects' gain allows it too.
-TEST(PostSegmenterTest, ANegativeMergeGainJoinsUnfinishedPiecesButNotACompleteObject) {
-  FakeMatcher matcher({{{1}, Category::kWindow, 1}, {{2}, Category::kCurtain, 2}, {{3, 4}, Category::kSofa, 3}});
-  matcher.SetAllEntries({1}, {{Category::kWindow, 0.97}});
-  matcher.SetAllEntries({2}, {{Category::kCurtain, 0.9}});
-  matcher.SetAllEntries({3}, {{Category::kSofa, 0.93}});
-  matcher.SetAllEntries({4}, {{Category::kSofa, 0.92}});
-  matcher.SetFullModels({1}, {{Category::kWindow, 0.97}});
-  matcher.SetFullModels({2}, {{Category::kCurtain, 0.9}});
-  matcher.SetFullModels({1, 2}, {{Category::kCurtain, 0.92}});
-  matcher.SetFullModels({3}, {{Category::kSofa, 0.93}});
-  matcher.SetFullModels({4}, {{Category::kSofa, 0.92}});
-  matcher.SetFullModels({3, 4}, {{Category::kSofa, 0.915}});
-  const PostSegmenterInput input = MakeInput({1, 2, 3, 4}, {{1, 2}, {3, 4}});
-  auto objects = [&](double min_gain, double complete_min_gain) {
-    PostSegmenterOptions options;
-    options.object_merge_min_gain = min_gain;
-    options.object_merge_complete_min_gain = complete_min_gain;
-    std::vector<std::vector<std::int32_t>> out;
-    for (const auto& o : PostSegmenter(options, &matcher).Update(input).objects) out.push_back(o.component_ids);
-    std::sort(out.begin(), out.end());
-    return out;
-  };
-  using Groups = std::vector<std::vector<std::int32_t>>;
-  EXPECT_EQ(objects(0.0, 0.0), (Groups{{1}, {2}, {3}, {4}}));      // the default: no union gains
-  EXPECT_EQ(objects(-0.03, 0.0), (Groups{{1}, {2}, {3, 4}}));      // the pieces join, the window stays
-  EXPECT_EQ(objects(-0.03, -0.03), (Groups{{1, 2}, {3, 4}}));      // the complete window joins too
-  EXPECT_EQ(objects(-0.005, -0.03), (Groups{{1}, {2}, {3}, {4}})); // never below object_merge_min_gain
 }
 
 // A bed fully seen (components 1-4, F = 0.98) beside a fifth of a wardrobe (component 5, the rest of
@@ -646,8 +588,7 @@ TEST(PostSegmenterTest, OptionsListEveryField) {
   EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
                                             "split_instances", "graph_cuts", "smoothness", "smoothness_scale",
                                             "merge_min_gain", "gain_reference", "merge_objects",
-                                            "object_merge_min_gain", "object_merge_complete_min_gain",
-                                            "object_merge_keep_larger_fit", "alpha_expansion.max_sweeps",
+                                            "object_merge_min_gain", "object_merge_keep_larger_fit", "alpha_expansion.max_sweeps",
                                             "alpha_expansion.min_improvement"}));
 }
 
