@@ -909,6 +909,10 @@ std::string Fix(double v, int decimals) {
   std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
   return buf;
 }
+// The first cell of an error-class table's row: the method, or "All methods" in bold.
+std::string ErrorsRowLabel(const MethodErrors& e) {
+  return e.method == "all" ? std::string("**All methods**") : "`" + e.method + "`";
+}
 std::string OutcomeLabel(OutputOutcome outcome) {
   switch (outcome) {
     case OutputOutcome::kCorrect: return "correct";
@@ -1018,7 +1022,7 @@ std::string ReportMarkdown(const Report& report) {
     std::vector<const MethodErrors*> rows = ErrorsPerMethod(report);
     if (rows.size() > 1) rows.push_back(ErrorsOverall(report));
     for (const MethodErrors* e : rows) {
-      md << "| " << (e->method == "all" ? std::string("**All methods**") : "`" + e->method + "`") << " | " << e->runs
+      md << "| " << ErrorsRowLabel(*e) << " | " << e->runs
          << " | " << e->breakdown.Total() << " |";
       for (OutputOutcome o : OutputOutcomesInReportOrder()) {
         md << ' ' << e->breakdown.Count(o) << " (" << Pct(e->breakdown.Share(o)) << ") |";
@@ -1039,7 +1043,7 @@ std::string ReportMarkdown(const Report& report) {
       for (std::size_t k = 1; k < OutputOutcomesInReportOrder().size(); ++k) md << "---|";
       md << '\n';
       for (const MethodErrors* e : rows) {
-        md << "| " << (e->method == "all" ? std::string("**All methods**") : "`" + e->method + "`") << " | "
+        md << "| " << ErrorsRowLabel(*e) << " | "
            << e->breakdown.share_known << " |";
         for (OutputOutcome o : OutputOutcomesInReportOrder()) {
           if (o != OutputOutcome::kBackgroundOrStructure) md << ' ' << e->breakdown.OnPiece(o) << " |";
