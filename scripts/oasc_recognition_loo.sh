@@ -54,6 +54,9 @@ for views in (1, 3):
     top5 = sum(x["top5"] for x in q) / len(q)
     pred_other = sum(x["predicted"] == "other" for x in q) / len(q)
     other_ok = sum(x["predicted"] == "other" for x in o) / max(1, len(o))
-    print(f"views {views}: {len(q)} queries, top-1 {top1:.3f}, top-5 {top5:.3f}, predicted other {pred_other:.3f}; "
-          f"{len(o)} other queries, predicted other {other_ok:.3f}")
+    line = (f"views {views}: {len(q)} queries, top-1 {top1:.3f}, top-5 {top5:.3f}, predicted other {pred_other:.3f}; "
+            f"{len(o)} other queries, predicted other {other_ok:.3f}")
+    if all("classifier" in x for x in q):  # recognition.classifier_weight > 0: the classifier's own first choice
+        line += f"; classifier alone top-1 {sum(x['truth'] == x['classifier'] for x in q) / len(q):.3f}"
+    print(line)
 EOF

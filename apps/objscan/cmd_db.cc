@@ -210,6 +210,7 @@ int RunEval(const DbArgs& a) {
                          {"predicted", world::CategoryName(q.predicted)},
                          {"top5", q.top5},
                          {"retrieved", retrieved}});
+    if (q.classified) per_query.back()["classifier"] = world::CategoryName(q.classifier_choice);
   }
   j["queries"] = per_query;
   std::printf("%s\n", j.dump(2).c_str());

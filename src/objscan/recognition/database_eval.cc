@@ -131,6 +131,8 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
 
   struct TaskResult {
     world::Category predicted = world::Category::kOther;
+    bool classified = false;
+    world::Category classifier_choice = world::Category::kOther;
     bool top1 = false, top5 = false;
     std::vector<DatabaseEvalResult::Retrieved> retrieved;
     double ms = 0.0;
@@ -153,6 +155,11 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
       const QueryDescription query = recognizer.Describe(surface);
       const std::vector<SimilarModel> similar = recognizer.Retrieve(query, RetrievalScope::kFullModels);
       r.ms = watch.ElapsedMs();
+      if (!query.category_prior.empty()) {
+        r.classified = true;
+        const auto best = std::max_element(query.category_prior.begin(), query.category_prior.end());
+        r.classifier_choice = static_cast<world::Category>(best - query.category_prior.begin());
+      }
       if (!similar.empty()) {
         r.predicted = database.entries()[similar.front().entry].category;
         r.top1 = r.predicted == task.source->category;
@@ -198,7 +205,8 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
       acc.top5_category_accuracy += results[t].top5 ? 1.0 : 0.0;
       ms_sum += results[t].ms;
       out.queries.push_back({tasks[t].source->category, results[t].predicted, views, results[t].top5,
-                             tasks[t].source->name, std::move(results[t].retrieved)});
+                             tasks[t].source->name, std::move(results[t].retrieved), results[t].classified,
+                             results[t].classifier_choice});
     }
     acc.top1_category_accuracy /= std::max(1, acc.queries);
     acc.top5_category_accuracy /= std::max(1, acc.queries);

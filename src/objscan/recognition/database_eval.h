@@ -85,6 +85,10 @@ struct DatabaseEvalResult {
     bool top5 = false;
     std::string model;  // the query's ModelSource::name
     std::vector<Retrieved> retrieved;
+    // The category classifier's own first choice (RecognitionOptions::classifier_weight > 0), and
+    // whether it is trained at all.
+    bool classified = false;
+    world::Category classifier_choice = world::Category::kOther;
   };
   std::vector<Query> queries;
   // Query sources left out because the database has no model of their category, and the number of

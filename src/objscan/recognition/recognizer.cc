@@ -34,6 +34,8 @@ void RecognitionOptions::Validate() const {
   config::RequireNonNegative("recognition.space_weight", space_weight);
   config::RequireNonNegative("recognition.floor_contact_m", floor_contact_m);
   config::RequireNonNegative("recognition.support_height_tolerance_m", support_height_tolerance_m);
+  config::RequireNonNegative("recognition.classifier_weight", classifier_weight);
+  classifier.Validate();
   config::Require(space_tolerance >= 0.0 && space_tolerance < 1.0, "recognition.space_tolerance", "must be in [0, 1)");
   alignment.Validate();
 }
@@ -53,6 +55,16 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
     std::sort(h.begin(), h.end());
     h.erase(std::unique(h.begin(), h.end()), h.end());
   }
+  if (options_.classifier_weight > 0.0) classifier_ = CategoryClassifier::Train(database_, options_.classifier);
+}
+
+void Recognizer::SetCategoryPrior(QueryDescription* query) const {
+  if (!classifier_.trained() || query->keypoints.empty()) return;
+  const CategoryClassifier::Probabilities p = classifier_.Classify(query->keypoints, query->keypoint_normals);
+  const double best = *std::max_element(p.begin(), p.end());
+  query->category_prior.assign(p.size(), 0.f);
+  if (!(best > 0.0)) return;
+  for (std::size_t k = 0; k < p.size(); ++k) query->category_prior[k] = static_cast<float>(p[k] / best);
 }
 
 double Recognizer::SupportFactor(int entry, double height_m) const {
@@ -107,6 +119,7 @@ QueryDescription Recognizer::Describe(const geometry::PointCloud& query, const g
   q.num_points = cloud->points.size();
   descriptor_->Compute(support ? *support : *cloud, q.keypoints, &q.descriptors);
   q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, q.descriptors, q.bounds, s.bow);
+  SetCategoryPrior(&q);
   return q;
 }
 
@@ -148,6 +161,7 @@ QueryDescription Recognizer::Compose(const std::vector<const QueryDescription*>&
   q.view_direction = ViewDirection(normal_sum, q.keypoints.size(), q.sensor_normals);
   q.diagonal_m = q.bounds.Diagonal();
   q.bow = ComputeSpatialBow(database_.vocabulary(), q.keypoints, q.keypoint_normals, q.descriptors, q.bounds, s.bow);
+  SetCategoryPrior(&q);
   return q;
 }
 
@@ -268,6 +282,15 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
       m->visible_objectness *= m->support_factor;
       m->fscore *= m->support_factor;
     }
+  }
+  m->category_factor = 1.0;
+  if (!query.category_prior.empty()) {
+    const double prior = query.category_prior[static_cast<std::size_t>(world::CategoryId(e.category))];
+    m->category_factor = std::pow(std::max(prior, 1e-6), options_.classifier_weight);
+    o.objectness *= m->category_factor;
+    m->fit *= m->category_factor;
+    m->visible_objectness *= m->category_factor;
+    m->fscore *= m->category_factor;
   }
   if (check_space) {
     const Eigen::Vector3f center = query.bounds.Center().cast<float>();

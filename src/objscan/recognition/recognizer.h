@@ -10,6 +10,7 @@
 #include "objscan/common/config.h"
 #include "objscan/geometry/point_cloud.h"
 #include "objscan/recognition/alignment.h"
+#include "objscan/recognition/category_classifier.h"
 #include "objscan/recognition/descriptor.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/recognition/objectness.h"
@@ -84,6 +85,13 @@ struct RecognitionOptions {
   // by a few centimetres; 2t off costs 40%, 3t 86%). Needs the floor (SpaceEvidence::FloorHeight);
   // categories without support heights keep their score. 0 = off (the paper).
   double support_height_tolerance_m = 0.0;
+  // Beyond the paper: a category prior from a classifier trained on the database's own views when the
+  // recognizer is built (CategoryClassifier). With P the classifier's probabilities for the query,
+  // O(c, m), fit and the rank score of an entry of category k are multiplied by
+  // (P(k) / max_j P(j))^classifier_weight: the classifier's first choice keeps its score, the others
+  // lose in proportion to how much less likely the classifier finds them. 0 = off (the paper).
+  double classifier_weight = 0.0;
+  CategoryClassifierOptions classifier;
   AlignmentOptions alignment;
   // The memory a model database may take once loaded (about ModelDatabase::kMemoryPerFileByte times
   // its file); a larger one fails to load with one line naming this key instead of running out of
@@ -112,6 +120,8 @@ struct RecognitionOptions {
     v("structure_completeness", structure_completeness);
     v("floor_contact_m", floor_contact_m);
     v("support_height_tolerance_m", support_height_tolerance_m);
+    v("classifier_weight", classifier_weight);
+    v("classifier", classifier);
     v("alignment", alignment);
     v("max_database_memory_mb", max_database_memory_mb);
   }
@@ -131,6 +141,9 @@ struct QueryDescription {
   std::vector<float> descriptors;          // keypoints.size() x descriptor dimension, row-major
   std::size_t num_points = 0;              // query points described (its size, for Compose)
   bool sensor_normals = false;             // normals came with the query (they face the sensor)
+  // P(k | query) / max_j P(j | query) per world::CategoryId k, from the recognizer's category
+  // classifier; empty when RecognitionOptions::classifier_weight is 0.
+  std::vector<float> category_prior;
   bool empty() const { return keypoints.empty(); }
 };
 
@@ -146,6 +159,7 @@ struct SimilarModel {
   double fscore = 0.0;         // 2PR / (P + R)
   double impossible_fraction = 0.0;  // share of the aligned entry's keypoints where no surface can be
   double support_factor = 1.0;       // RecognitionOptions::support_height_tolerance_m's factor
+  double category_factor = 1.0;      // RecognitionOptions::classifier_weight's factor
   double rank_score = 0.0;
   // The entry's pose in the query's (world) frame: T_world_model = T_item_query^-1.
   Eigen::Affine3d T_world_model() const { return alignment.T_item_query.inverse(); }
@@ -181,6 +195,8 @@ class Recognizer {
 
   const ModelDatabase& database() const { return database_; }
   const RecognitionOptions& options() const { return options_; }
+  // Trained when RecognitionOptions::classifier_weight > 0.
+  const CategoryClassifier& classifier() const { return classifier_; }
 
  private:
   // Objectness, fit and visible objectness of `points` (the query's keypoints, or a subset of them)
@@ -198,12 +214,15 @@ class Recognizer {
   AlignmentConstraints ConstraintsFor(const QueryDescription& query, const SpaceEvidence* space) const;
   // support_height_tolerance_m's factor for an entry whose z = 0 stands at height_m above the floor.
   double SupportFactor(int entry, double height_m) const;
+  // Fills query->category_prior from the classifier (when trained).
+  void SetCategoryPrior(QueryDescription* query) const;
 
   const ModelDatabase& database_;
   RecognitionOptions options_;
   std::unique_ptr<DescriptorExtractor> descriptor_;
   // Per category (world::CategoryId): the distinct support heights of its models, ascending.
   std::vector<std::vector<float>> support_heights_;
+  CategoryClassifier classifier_;
 };
 
 }  // namespace objscan::recognition

@@ -322,6 +322,41 @@ TEST_F(RecognizerTest, TwoStageRetrievalAgreesWithRefiningTheWholeShortlist) {
   }
 }
 
+// recognition.classifier_weight: the query carries the database-trained classifier's P(k) / max P,
+// and each entry's objectness, fit and rank score are those without the prior times
+// (P(k) / max P)^w; 0 leaves the paper's scores (no prior at all).
+TEST_F(RecognizerTest, TheCategoryPriorScalesScoresByTheClassifiersOdds) {
+  const Recognizer plain(*db_, RecognitionOptions());
+  RecognitionOptions options;
+  options.classifier_weight = 0.5;
+  const Recognizer with_prior(*db_, options);
+  ASSERT_TRUE(with_prior.classifier().trained());
+  EXPECT_FALSE(plain.classifier().trained());
+  const geometry::PointCloud cloud = Query(&testing::ChairLike, Placement(40.0, {1.0, 0.5, 0.0}), false);
+  const QueryDescription q_plain = plain.Describe(cloud);
+  const QueryDescription q = with_prior.Describe(cloud);
+  EXPECT_TRUE(q_plain.category_prior.empty());
+  ASSERT_EQ(q.category_prior.size(), static_cast<std::size_t>(world::kNumCategories));
+  EXPECT_FLOAT_EQ(*std::max_element(q.category_prior.begin(), q.category_prior.end()), 1.0f);
+  // The shapes are far apart: the classifier trained on their views names the whole chair a chair.
+  EXPECT_FLOAT_EQ(q.category_prior[world::CategoryId(world::Category::kChair)], 1.0f);
+  const auto similar = with_prior.Retrieve(q, RetrievalScope::kFullModels);
+  ASSERT_FALSE(similar.empty());
+  EXPECT_EQ(db_->entries()[similar[0].entry].category, world::Category::kChair);
+  for (const SimilarModel& m : similar) {
+    const DatabaseEntry& e = db_->entries()[m.entry];
+    SCOPED_TRACE(e.name);
+    const double expected = std::pow(std::max(1e-6, static_cast<double>(q.category_prior[world::CategoryId(e.category)])), 0.5);
+    EXPECT_NEAR(m.category_factor, expected, 1e-12);
+    const SimilarModel unscaled = plain.Match(q_plain, m.entry);
+    const SimilarModel scaled = with_prior.Match(q, m.entry);
+    EXPECT_NEAR(scaled.objectness.objectness, unscaled.objectness.objectness * expected, 1e-9);
+    EXPECT_NEAR(scaled.fit, unscaled.fit * expected, 1e-9);
+  }
+  // Composed unions carry the prior too.
+  EXPECT_EQ(with_prior.Compose({&q}).category_prior, q.category_prior);
+}
+
 TEST_F(RecognizerTest, ScopeSelectsFullModelsOrAllEntries) {
   const Recognizer recognizer(*db_, RecognitionOptions());
   // A single table leg: among all entries its best match is a leg component of the table; among

@@ -1,0 +1,227 @@
+#include "objscan/recognition/category_classifier.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "objscan/recognition/model_database.h"
+
+namespace objscan::recognition {
+
+void CategoryClassifierOptions::Validate() const {
+  config::Require(views_per_model >= 0, "recognition.classifier.views_per_model", "must be >= 0");
+  config::RequireInRange("recognition.classifier.low_elevation_deg", low_elevation_deg, -89.0, 89.0);
+  config::RequireInRange("recognition.classifier.high_elevation_deg", high_elevation_deg, -89.0, 89.0);
+  config::RequireInRange("recognition.classifier.visible_min_cos", visible_min_cos, -1.0, 1.0);
+  config::Require(iterations >= 1, "recognition.classifier.iterations", "must be at least 1");
+  config::RequirePositive("recognition.classifier.learning_rate", learning_rate);
+  config::RequireNonNegative("recognition.classifier.l2_weight", l2_weight);
+}
+
+namespace {
+
+// The q-quantile of `values` (reordered in place).
+float Quantile(std::vector<float>* values, double q) {
+  const std::size_t k = std::min(values->size() - 1, static_cast<std::size_t>(q * static_cast<double>(values->size())));
+  std::nth_element(values->begin(), values->begin() + static_cast<std::ptrdiff_t>(k), values->end());
+  return (*values)[k];
+}
+
+// Band edges (m above the shape's bottom) of the height histogram and of the horizontal surfaces.
+constexpr std::array<float, 9> kHeightEdgesM = {0.15f, 0.3f, 0.45f, 0.6f, 0.75f, 0.9f, 1.1f, 1.4f, 1.8f};
+constexpr std::array<float, 4> kSurfaceEdgesM = {0.3f, 0.6f, 0.9f, 1.3f};
+
+template <std::size_t N>
+int Band(const std::array<float, N>& edges, float height_m) {
+  return static_cast<int>(std::upper_bound(edges.begin(), edges.end(), height_m) - edges.begin());
+}
+
+constexpr float kHorizontalMinAbsNz = 0.7f;  // |n_z| above this: a surface facing up or down
+constexpr float kVerticalMaxAbsNz = 0.3f;    // below this: a vertical surface
+constexpr double kTrim = 0.02;               // extents between the 2% and 98% quantiles
+
+}  // namespace
+
+std::array<float, kNumShapeFeatures> ShapeFeatures(const std::vector<Eigen::Vector3f>& points,
+                                                   const std::vector<Eigen::Vector3f>& normals) {
+  std::array<float, kNumShapeFeatures> f{};
+  const std::size_t n = std::min(points.size(), normals.size());
+  if (n < 8) return f;
+  std::vector<float> values(n);
+  for (std::size_t i = 0; i < n; ++i) values[i] = points[i].z();
+  const float bottom = Quantile(&values, kTrim);
+  const float top = Quantile(&values, 1.0 - kTrim);
+  const float height = std::max(0.f, top - bottom);
+  // Horizontal principal axes.
+  Eigen::Vector2d mean_xy = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0; i < n; ++i) mean_xy += points[i].head<2>().cast<double>();
+  mean_xy /= static_cast<double>(n);
+  Eigen::Matrix2d cov_xy = Eigen::Matrix2d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d d = points[i].head<2>().cast<double>() - mean_xy;
+    cov_xy += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig_xy(cov_xy);
+  float extent[2];
+  for (int a = 0; a < 2; ++a) {
+    const Eigen::Vector2d axis = eig_xy.eigenvectors().col(a);
+    for (std::size_t i = 0; i < n; ++i) values[i] = static_cast<float>((points[i].head<2>().cast<double>() - mean_xy).dot(axis));
+    const float lo = Quantile(&values, kTrim);
+    extent[a] = Quantile(&values, 1.0 - kTrim) - lo;
+  }
+  const float long_side = std::max(extent[0], extent[1]);
+  const float short_side = std::min(extent[0], extent[1]);
+  int k = 0;
+  f[k++] = std::log(height + 0.05f);
+  f[k++] = std::log(long_side + 0.05f);
+  f[k++] = std::log(short_side + 0.05f);
+  f[k++] = short_side / (long_side + 1e-3f);
+  f[k++] = height / (height + long_side + 1e-3f);
+  // How the surface spreads over height, and where it faces up or down.
+  std::array<float, kHeightEdgesM.size() + 1> height_share{};
+  std::array<float, kSurfaceEdgesM.size() + 1> horizontal_share{};
+  float vertical = 0.f, in_top_fifth = 0.f, radial = 0.f;
+  std::vector<float> horizontal_heights;
+  const double half_long_side = std::max(1e-3f, 0.5f * long_side);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float h = std::clamp(points[i].z() - bottom, 0.f, height);
+    height_share[static_cast<std::size_t>(Band(kHeightEdgesM, h))] += 1.f;
+    const float nz = std::abs(normals[i].z());
+    if (nz > kHorizontalMinAbsNz) {
+      horizontal_share[static_cast<std::size_t>(Band(kSurfaceEdgesM, h))] += 1.f;
+      horizontal_heights.push_back(h);
+    }
+    if (nz < kVerticalMaxAbsNz) vertical += 1.f;
+    if (h > 0.8f * height) in_top_fifth += 1.f;
+    radial += static_cast<float>((points[i].head<2>().cast<double>() - mean_xy).norm() / half_long_side);
+  }
+  const float inv_n = 1.f / static_cast<float>(n);
+  for (float s : height_share) f[k++] = s * inv_n;
+  for (float s : horizontal_share) f[k++] = s * inv_n;
+  f[k++] = vertical * inv_n;
+  f[k++] = horizontal_heights.empty() ? 0.f : Quantile(&horizontal_heights, 0.5);
+  // Flatness: the 3D spread's smaller principal variances against the largest.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) mean += points[i].cast<double>();
+  mean /= static_cast<double>(n);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = points[i].cast<double>() - mean;
+    cov += d * d.transpose();
+  }
+  const Eigen::Vector3d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvalues();  // ascending
+  const double largest = std::max(lambda(2), 1e-12);
+  f[k++] = static_cast<float>(lambda(1) / largest);
+  f[k++] = static_cast<float>(lambda(0) / largest);
+  f[k++] = in_top_fifth * inv_n;
+  f[k++] = radial * inv_n;
+  return f;
+}
+
+CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
+                                           const std::vector<world::Category>& labels,
+                                           const CategoryClassifierOptions& options) {
+  options.Validate();
+  CategoryClassifier c;
+  if (features.empty() || features.size() != labels.size()) return c;
+  std::array<int, world::kNumCategories> count{};
+  for (world::Category l : labels) ++count[static_cast<std::size_t>(world::CategoryId(l))];
+  std::array<int, world::kNumCategories> class_of{};
+  for (int id = 0; id < world::kNumCategories; ++id) {
+    class_of[static_cast<std::size_t>(id)] = -1;
+    if (count[static_cast<std::size_t>(id)] == 0) continue;
+    class_of[static_cast<std::size_t>(id)] = static_cast<int>(c.classes_.size());
+    c.classes_.push_back(static_cast<world::Category>(id));
+  }
+  const int n = static_cast<int>(features.size());
+  const int d = kNumShapeFeatures;
+  const int classes = static_cast<int>(c.classes_.size());
+  // Standardised design matrix with a bias column.
+  Eigen::MatrixXd x(n, d + 1);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < d; ++j) x(i, j) = features[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  }
+  c.mean_ = x.leftCols(d).colwise().mean().transpose();
+  c.inverse_std_.resize(d);
+  for (int j = 0; j < d; ++j) {
+    const double var = (x.col(j).array() - c.mean_(j)).square().mean();
+    c.inverse_std_(j) = var > 1e-12 ? 1.0 / std::sqrt(var) : 0.0;
+    x.col(j) = (x.col(j).array() - c.mean_(j)) * c.inverse_std_(j);
+  }
+  x.col(d).setOnes();
+  // One-hot targets, each class weighing the same in all.
+  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(n, classes);
+  Eigen::VectorXd w(n);
+  for (int i = 0; i < n; ++i) {
+    const int id = world::CategoryId(labels[static_cast<std::size_t>(i)]);
+    y(i, class_of[static_cast<std::size_t>(id)]) = 1.0;
+    w(i) = 1.0 / (static_cast<double>(classes) * count[static_cast<std::size_t>(id)]);
+  }
+  c.weights_ = Eigen::MatrixXd::Zero(classes, d + 1);
+  if (classes == 1) return c;
+  Eigen::MatrixXd p(n, classes);
+  for (int it = 0; it < options.iterations; ++it) {
+    p.noalias() = x * c.weights_.transpose();
+    for (int i = 0; i < n; ++i) {
+      const double m = p.row(i).maxCoeff();
+      p.row(i) = (p.row(i).array() - m).exp();
+      p.row(i) /= p.row(i).sum();
+    }
+    const Eigen::MatrixXd residual = (p - y).array().colwise() * w.array();
+    Eigen::MatrixXd gradient = residual.transpose() * x;
+    gradient.leftCols(d) += options.l2_weight * c.weights_.leftCols(d);
+    c.weights_ -= options.learning_rate * gradient;
+  }
+  return c;
+}
+
+CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, const CategoryClassifierOptions& options) {
+  options.Validate();
+  std::vector<std::array<float, kNumShapeFeatures>> features;
+  std::vector<world::Category> labels;
+  std::vector<Eigen::Vector3f> seen_points, seen_normals;
+  for (const DatabaseEntry& e : database.entries()) {
+    if (e.kind != EntryKind::kFullModel || e.keypoints.size() != e.keypoint_normals.size()) continue;
+    features.push_back(ShapeFeatures(e.keypoints, e.keypoint_normals));
+    labels.push_back(e.category);
+    for (int v = 0; v < options.views_per_model; ++v) {
+      // Azimuths evenly around the model; alternate views at the low and the high elevation.
+      const double azimuth = 2.0 * M_PI * v / options.views_per_model;
+      const double elevation = (v % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
+      const Eigen::Vector3f view(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
+                                 static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
+                                 static_cast<float>(std::sin(elevation)));
+      seen_points.clear();
+      seen_normals.clear();
+      for (std::size_t i = 0; i < e.keypoints.size(); ++i) {
+        if (e.keypoint_normals[i].dot(view) <= options.visible_min_cos) continue;
+        seen_points.push_back(e.keypoints[i]);
+        seen_normals.push_back(e.keypoint_normals[i]);
+      }
+      if (seen_points.size() < 8) continue;
+      features.push_back(ShapeFeatures(seen_points, seen_normals));
+      labels.push_back(e.category);
+    }
+  }
+  return Fit(features, labels, options);
+}
+
+CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<float, kNumShapeFeatures>& features) const {
+  Probabilities out{};
+  if (!trained()) return out;
+  Eigen::VectorXd x(kNumShapeFeatures + 1);
+  for (int j = 0; j < kNumShapeFeatures; ++j) {
+    x(j) = (static_cast<double>(features[static_cast<std::size_t>(j)]) - mean_(j)) * inverse_std_(j);
+  }
+  x(kNumShapeFeatures) = 1.0;
+  Eigen::VectorXd score = weights_ * x;
+  score = (score.array() - score.maxCoeff()).exp();
+  score /= score.sum();
+  for (std::size_t c = 0; c < classes_.size(); ++c) {
+    out[static_cast<std::size_t>(world::CategoryId(classes_[c]))] = score(static_cast<Eigen::Index>(c));
+  }
+  return out;
+}
+
+}  // namespace objscan::recognition
