@@ -134,6 +134,15 @@ std::optional<segmentation::ModelMatch> RecognizerComponentMatcher::BestOfCatego
   return best;
 }
 
+std::vector<float> RecognizerComponentMatcher::CategoryOdds(const std::vector<std::int32_t>& component_ids) {
+  if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");
+  if (recognizer_.options().compose_unions) DescribeMissing({component_ids});
+  QueryDescription storage;
+  const QueryDescription* query = DescribedQuery(component_ids, &storage);
+  if (query == nullptr) return {};
+  return recognizer_.CategoryOdds(*query);
+}
+
 std::vector<segmentation::MatchResult> RecognizerComponentMatcher::MatchBatch(
     const std::vector<std::vector<std::int32_t>>& queries, segmentation::MatchScope scope) {
   if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");

@@ -36,6 +36,8 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
   // category (an object in a wall opening is a window) but not the model or its pose.
   std::optional<segmentation::ModelMatch> BestOfCategory(const std::vector<std::int32_t>& component_ids,
                                                          world::Category category);
+  // Recognizer::CategoryOdds of the union's description (empty when it has none).
+  std::vector<float> CategoryOdds(const std::vector<std::int32_t>& component_ids);
 
  private:
   // Describes (in parallel) every component named in `queries` whose description is not cached at

@@ -55,16 +55,26 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
     std::sort(h.begin(), h.end());
     h.erase(std::unique(h.begin(), h.end()), h.end());
   }
-  if (options_.classifier_weight > 0.0) classifier_ = CategoryClassifier::Train(database_, options_.classifier);
+}
+
+const CategoryClassifier& Recognizer::classifier() const {
+  std::call_once(classifier_once_, [this] { classifier_ = CategoryClassifier::Train(database_, options_.classifier); });
+  return classifier_;
+}
+
+std::vector<float> Recognizer::CategoryOdds(const QueryDescription& query) const {
+  std::vector<float> odds;
+  if (query.keypoints.empty()) return odds;
+  const CategoryClassifier::Probabilities p = classifier().Classify(query.keypoints, query.keypoint_normals);
+  const double best = *std::max_element(p.begin(), p.end());
+  odds.assign(p.size(), 0.f);
+  if (!(best > 0.0)) return odds;
+  for (std::size_t k = 0; k < p.size(); ++k) odds[k] = static_cast<float>(p[k] / best);
+  return odds;
 }
 
 void Recognizer::SetCategoryPrior(QueryDescription* query) const {
-  if (!classifier_.trained() || query->keypoints.empty()) return;
-  const CategoryClassifier::Probabilities p = classifier_.Classify(query->keypoints, query->keypoint_normals);
-  const double best = *std::max_element(p.begin(), p.end());
-  query->category_prior.assign(p.size(), 0.f);
-  if (!(best > 0.0)) return;
-  for (std::size_t k = 0; k < p.size(); ++k) query->category_prior[k] = static_cast<float>(p[k] / best);
+  if (options_.classifier_weight > 0.0) query->category_prior = CategoryOdds(*query);
 }
 
 double Recognizer::SupportFactor(int entry, double height_m) const {

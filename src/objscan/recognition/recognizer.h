@@ -5,6 +5,7 @@
 // translation search, trimmed ICP) and scored; the n_s best are returned with their transforms and
 // objectness. Const and thread-safe once constructed.
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "objscan/common/config.h"
@@ -142,7 +143,7 @@ struct QueryDescription {
   std::size_t num_points = 0;              // query points described (its size, for Compose)
   bool sensor_normals = false;             // normals came with the query (they face the sensor)
   // P(k | query) / max_j P(j | query) per world::CategoryId k, from the recognizer's category
-  // classifier; empty when RecognitionOptions::classifier_weight is 0.
+  // classifier (Recognizer::CategoryOdds); empty when RecognitionOptions::classifier_weight is 0.
   std::vector<float> category_prior;
   bool empty() const { return keypoints.empty(); }
 };
@@ -195,8 +196,11 @@ class Recognizer {
 
   const ModelDatabase& database() const { return database_; }
   const RecognitionOptions& options() const { return options_; }
-  // Trained when RecognitionOptions::classifier_weight > 0.
-  const CategoryClassifier& classifier() const { return classifier_; }
+  // The category classifier, trained on the database's views on first use (then shared; thread-safe).
+  const CategoryClassifier& classifier() const;
+  // P(k | query) / max_j P(j | query) per world::CategoryId k from the classifier (empty for an
+  // empty query): how much less likely than its first choice the classifier finds each category.
+  std::vector<float> CategoryOdds(const QueryDescription& query) const;
 
  private:
   // Objectness, fit and visible objectness of `points` (the query's keypoints, or a subset of them)
@@ -222,7 +226,8 @@ class Recognizer {
   std::unique_ptr<DescriptorExtractor> descriptor_;
   // Per category (world::CategoryId): the distinct support heights of its models, ascending.
   std::vector<std::vector<float>> support_heights_;
-  CategoryClassifier classifier_;
+  mutable std::once_flag classifier_once_;
+  mutable CategoryClassifier classifier_;
 };
 
 }  // namespace objscan::recognition

@@ -331,7 +331,6 @@ TEST_F(RecognizerTest, TheCategoryPriorScalesScoresByTheClassifiersOdds) {
   options.classifier_weight = 0.5;
   const Recognizer with_prior(*db_, options);
   ASSERT_TRUE(with_prior.classifier().trained());
-  EXPECT_FALSE(plain.classifier().trained());
   const geometry::PointCloud cloud = Query(&testing::ChairLike, Placement(40.0, {1.0, 0.5, 0.0}), false);
   const QueryDescription q_plain = plain.Describe(cloud);
   const QueryDescription q = with_prior.Describe(cloud);
@@ -353,8 +352,10 @@ TEST_F(RecognizerTest, TheCategoryPriorScalesScoresByTheClassifiersOdds) {
     EXPECT_NEAR(scaled.objectness.objectness, unscaled.objectness.objectness * expected, 1e-9);
     EXPECT_NEAR(scaled.fit, unscaled.fit * expected, 1e-9);
   }
-  // Composed unions carry the prior too.
+  // Composed unions carry the prior too; without the weight the odds are there on request.
   EXPECT_EQ(with_prior.Compose({&q}).category_prior, q.category_prior);
+  EXPECT_EQ(plain.CategoryOdds(q_plain), q.category_prior);
+  EXPECT_TRUE(plain.CategoryOdds(QueryDescription()).empty());
 }
 
 TEST_F(RecognizerTest, ScopeSelectsFullModelsOrAllEntries) {

@@ -862,6 +862,9 @@ struct Scanner::State {
       if (entry_id < 0 || entry_id >= static_cast<int>(s_.database.entries().size())) return nullptr;
       return &s_.database.entries()[static_cast<std::size_t>(entry_id)].points;
     }
+    std::vector<float> CategoryOdds(const std::vector<std::int32_t>& labels) override {
+      return s_.matcher.CategoryOdds(labels);
+    }
 
    private:
     State& s_;

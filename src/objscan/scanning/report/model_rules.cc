@@ -79,4 +79,15 @@ void DropUnsureRule::Apply(const ReportContext& /*context*/, ReportedObjects* ob
   }
 }
 
+void ShapeAgreesRule::Apply(const ReportContext& context, ReportedObjects* objects) const {
+  for (std::size_t i = 0; i < objects->size(); ++i) {
+    const ReportedObject& o = (*objects)[i];
+    if (!o.reported() || !o.record.category) continue;
+    const std::vector<float> odds = context.sources->CategoryOdds(o.record.labels);
+    const auto k = static_cast<std::size_t>(world::CategoryId(*o.record.category));
+    if (k >= odds.size() || static_cast<double>(odds[k]) >= min_odds_) continue;
+    objects->TakeLabel(i, name());
+  }
+}
+
 }  // namespace objscan::scanning

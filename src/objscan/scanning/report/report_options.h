@@ -45,6 +45,9 @@ struct ReportOptions {
   // below it were labelled right 5 times in 59 (on procedural rooms with their own generator's
   // database, 57 in 94): docs/results/oasc-dev-2026-11-26-step-budget-unsure.md.
   double min_labelled_objectness = 0.92;
+  // shape_agrees: a label the category classifier finds less than this times as likely as its first
+  // choice goes (1 = the classifier's first choice only; 0.5 allows near-ties).
+  double shape_min_odds = 0.5;
 
   template <class V>
   void Visit(V& v) {
@@ -56,6 +59,7 @@ struct ReportOptions {
     v("wall_openings", wall_openings);
     v("min_reported_elements", min_reported_elements);
     v("min_labelled_objectness", min_labelled_objectness);
+    v("shape_min_odds", shape_min_odds);
   }
   // Throws ConfigError naming report.rules for an unknown or repeated rule.
   void Validate() const;

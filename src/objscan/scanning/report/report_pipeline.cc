@@ -18,6 +18,7 @@ std::vector<std::string> AllReportRules() {
   // unfinished); off by default: it cost recall and coverage on the OASC dev worlds.
   std::vector<std::string> all = {"reopen_outgrown"};
   for (const std::string& name : DefaultReportRules()) all.push_back(name);
+  all.push_back("shape_agrees");
   return all;
 }
 
@@ -36,6 +37,7 @@ std::unique_ptr<ReportRule> MakeReportRule(const std::string& name, const Report
   if (name == "curtains_over_windows") return std::make_unique<CurtainsOverWindowsRule>(options.wall_openings);
   if (name == "drop_small") return std::make_unique<DropSmallRule>(options.min_reported_elements);
   if (name == "drop_unsure") return std::make_unique<DropUnsureRule>(options.min_labelled_objectness);
+  if (name == "shape_agrees") return std::make_unique<ShapeAgreesRule>(options.shape_min_odds);
   return nullptr;
 }
 
@@ -56,6 +58,7 @@ void ReportOptions::Validate() const {
   wall_openings.Validate();
   config::Require(min_reported_elements >= 0, "report.min_reported_elements", "must be >= 0");
   config::RequireInRange("report.min_labelled_objectness", min_labelled_objectness, 0.0, 1.0);
+  config::RequireInRange("report.shape_min_odds", shape_min_odds, 0.0, 1.0);
 }
 
 ReportPipeline::ReportPipeline(const ReportOptions& options) {

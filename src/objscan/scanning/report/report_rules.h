@@ -172,6 +172,22 @@ class DropUnsureRule : public ReportRule {
   double min_objectness_;
 };
 
+// shape_agrees: a labelled object whose category the database-trained category classifier finds
+// less than min_odds times as likely as its own first choice is reported unrecognized
+// (recognition/category_classifier.h). Two recognizers that share no evidence but the points, the
+// best-fitting model and the shape statistics of whole categories, agreeing: on the OASC dev models
+// (leave one world out) their agreement held most right labels and their disagreement mostly wrong
+// ones (docs/results/oasc-dev-2026-11-27-category-classifier.md).
+class ShapeAgreesRule : public ReportRule {
+ public:
+  explicit ShapeAgreesRule(double min_odds) : min_odds_(min_odds) {}
+  const char* name() const override { return "shape_agrees"; }
+  void Apply(const ReportContext& context, ReportedObjects* objects) const override;
+
+ private:
+  double min_odds_;
+};
+
 // The rule named `name` with its options from `options`; null for an unknown name.
 std::unique_ptr<ReportRule> MakeReportRule(const std::string& name, const ReportOptions& options);
 

@@ -47,7 +47,12 @@ class FakeSources : public ReportSources {
   std::map<std::vector<std::int32_t>, segmentation::MatchResult> full_matches;
   std::map<std::pair<std::vector<std::int32_t>, Category>, segmentation::ModelMatch> best_of_category;
   std::map<int, Points> entries;
+  std::map<std::vector<std::int32_t>, std::vector<float>> category_odds;
 
+  std::vector<float> CategoryOdds(const std::vector<std::int32_t>& labels) override {
+    auto it = category_odds.find(labels);
+    return it == category_odds.end() ? std::vector<float>() : it->second;
+  }
   segmentation::MatchResult MatchFullModels(const std::vector<std::int32_t>& labels) override {
     auto it = full_matches.find(labels);
     return it == full_matches.end() ? segmentation::MatchResult() : it->second;
@@ -369,6 +374,45 @@ TEST(ReportRulesTest, DropUnsureTakesLabelsOfUnfinishedObjectsBelowTheObjectness
   EXPECT_EQ(c.record(done).category, Category::kChair);  // completed objects are their model
 }
 
+// The classifier's odds per category for one object: `first` its first choice (odds 1), `other`
+// another category at `odds`, every other category 0.1.
+std::vector<float> Odds(Category first, Category other, float odds) {
+  std::vector<float> v(world::kNumCategories, 0.1f);
+  v[world::CategoryId(first)] = 1.f;
+  v[world::CategoryId(other)] = odds;
+  return v;
+}
+
+TEST(ReportRulesTest, ShapeAgreesTakesLabelsTheClassifierFindsUnlikely) {
+  ReportCase c;
+  const int agrees = c.AddUnfinished(1, Box({1, 1, 0}, {1.5, 1.5, 0.5}), Category::kChair, {}, 0.95);
+  const int near_tie = c.AddUnfinished(2, Box({3, 1, 0}, {3.5, 1.5, 0.5}), Category::kChair, {}, 0.95);
+  const int at_limit = c.AddUnfinished(3, Box({5, 1, 0}, {5.5, 1.5, 0.5}), Category::kChair, {}, 0.95);
+  const int unlikely = c.AddCompleted(4, Box({7, 1, 0}, {7.5, 1.5, 0.5}), Match(Category::kChair, 0.97, 1));
+  const int unknown = c.AddUnfinished(5, Box({9, 1, 0}, {9.5, 1.5, 0.5}), Category::kChair, {}, 0.95);
+  const int unlabelled = c.AddUnfinished(6, Box({11, 1, 0}, {11.5, 1.5, 0.5}), std::nullopt, {}, 0.95);
+  c.sources.category_odds[{1}] = Odds(Category::kChair, Category::kSofa, 0.9f);
+  c.sources.category_odds[{2}] = Odds(Category::kSofa, Category::kChair, 0.7f);
+  c.sources.category_odds[{3}] = Odds(Category::kSofa, Category::kChair, 0.5f);
+  c.sources.category_odds[{4}] = Odds(Category::kTable, Category::kChair, 0.2f);
+  c.sources.category_odds[{6}] = Odds(Category::kTable, Category::kChair, 0.2f);
+  c.Apply(ShapeAgreesRule(0.5));
+  EXPECT_EQ(c.record(agrees).category, Category::kChair);
+  EXPECT_EQ(c.record(near_tie).category, Category::kChair);
+  EXPECT_EQ(c.record(at_limit).category, Category::kChair);  // at min_odds: kept
+  EXPECT_FALSE(c.record(unlikely).category.has_value());    // complete or not
+  EXPECT_EQ(LastChange(c.record(unlikely)).rule, "shape_agrees");
+  EXPECT_EQ(LastChange(c.record(unlikely)).from, Category::kChair);
+  EXPECT_EQ(c.record(unknown).category, Category::kChair);  // no classifier: nothing to disagree
+  EXPECT_TRUE(c.record(unlabelled).label_changes.empty());
+  // min_odds 1: only the classifier's first choice keeps its label.
+  ReportCase strict;
+  const int tie = strict.AddUnfinished(2, Box({3, 1, 0}, {3.5, 1.5, 0.5}), Category::kChair, {}, 0.95);
+  strict.sources.category_odds[{2}] = Odds(Category::kSofa, Category::kChair, 0.7f);
+  strict.Apply(ShapeAgreesRule(1.0));
+  EXPECT_FALSE(strict.record(tie).category.has_value());
+}
+
 TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
   // A door label on a cabinet-deep thing: door_depth takes it and relabel gives it the confident
   // match; in the other order relabel finds nothing taken yet and the label is gone at the end.
@@ -393,7 +437,7 @@ TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
 TEST(ReportPipelineTest, DefaultListNamesEveryRuleOnceAndUnknownNamesAreRejected) {
   const std::vector<std::string> all = AllReportRules();
   EXPECT_EQ(std::set<std::string>(all.begin(), all.end()).size(), all.size());
-  EXPECT_EQ(DefaultReportRules().size() + 1, all.size());  // + reopen_outgrown
+  EXPECT_EQ(DefaultReportRules().size() + 2, all.size());  // + reopen_outgrown, shape_agrees
   ReportOptions options;
   for (const auto& name : all) EXPECT_NE(MakeReportRule(name, options), nullptr) << name;
   EXPECT_TRUE(ReportPipeline(options).needs_category_extents());
