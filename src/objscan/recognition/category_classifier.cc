@@ -41,6 +41,13 @@ constexpr float kHorizontalMinAbsNz = 0.7f;  // |n_z| above this: a surface faci
 constexpr float kVerticalMaxAbsNz = 0.3f;    // below this: a vertical surface
 constexpr double kTrim = 0.02;               // extents between the 2% and 98% quantiles
 
+// Scores -> probabilities in place (a vector or a matrix row), shifted by the maximum for range.
+template <class V>
+void Softmax(V&& scores) {
+  scores = (scores.array() - scores.maxCoeff()).exp();
+  scores /= scores.sum();
+}
+
 }  // namespace
 
 std::array<float, kNumShapeFeatures> ShapeFeatures(const std::vector<Eigen::Vector3f>& points,
@@ -163,11 +170,7 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
   Eigen::MatrixXd p(n, classes);
   for (int it = 0; it < options.iterations; ++it) {
     p.noalias() = x * c.weights_.transpose();
-    for (int i = 0; i < n; ++i) {
-      const double m = p.row(i).maxCoeff();
-      p.row(i) = (p.row(i).array() - m).exp();
-      p.row(i) /= p.row(i).sum();
-    }
+    for (int i = 0; i < n; ++i) Softmax(p.row(i));
     const Eigen::MatrixXd residual = (p - y).array().colwise() * w.array();
     Eigen::MatrixXd gradient = residual.transpose() * x;
     gradient.leftCols(d) += options.l2_weight * c.weights_.leftCols(d);
@@ -216,8 +219,7 @@ CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<
   }
   x(kNumShapeFeatures) = 1.0;
   Eigen::VectorXd score = weights_ * x;
-  score = (score.array() - score.maxCoeff()).exp();
-  score /= score.sum();
+  Softmax(score);
   for (std::size_t c = 0; c < classes_.size(); ++c) {
     out[static_cast<std::size_t>(world::CategoryId(classes_[c]))] = score(static_cast<Eigen::Index>(c));
   }
