@@ -137,4 +137,26 @@ geometry::TriangleMesh LoadMesh(const std::string& path, const MeshLoadOptions& 
   return mesh;
 }
 
+geometry::TriangleMesh LoadMeshFromMemory(const std::string& bytes, const std::string& extension,
+                                          const std::string& where) {
+  Assimp::Importer importer;
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(),
+                                                     aiProcess_Triangulate | aiProcess_SortByPType, extension.c_str());
+  if (scene == nullptr || scene->mRootNode == nullptr) {
+    std::string reason = importer.GetErrorString();
+    std::replace(reason.begin(), reason.end(), '\n', ' ');
+    throw InputError(where + ": cannot read mesh (" + (reason.empty() ? std::string("unknown error") : reason) + ")");
+  }
+  geometry::TriangleMesh mesh;
+  MeshBuilder builder(&mesh);
+  AddNode(*scene, *scene->mRootNode, aiMatrix4x4(), &builder, &mesh);
+  if (mesh.triangles.empty()) throw InputError(where + ": mesh has no triangles");
+  for (const auto& v : mesh.vertices) {
+    if (!v.allFinite()) throw InputError(where + ": mesh has non-finite vertex coordinates");
+  }
+  return mesh;
+}
+
 }  // namespace objscan::io

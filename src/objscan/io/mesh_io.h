@@ -34,6 +34,13 @@ struct MeshLoadOptions {
 geometry::TriangleMesh LoadMesh(const std::string& path);
 geometry::TriangleMesh LoadMesh(const std::string& path, const MeshLoadOptions& options);
 
+// A mesh held in memory (e.g. an entry of a zip archive) through Assimp's ReadFileFromMemory, in the
+// file's own coordinates (no unit or up-axis conversion; files it references are not loaded).
+// `extension` is the format hint ("3ds", "dae", "obj"); `where` names the source in errors. Throws
+// InputError naming `where` when Assimp cannot read it or it holds no triangles.
+geometry::TriangleMesh LoadMeshFromMemory(const std::string& bytes, const std::string& extension,
+                                          const std::string& where);
+
 // True for the extensions LoadMesh understands (case-insensitive): obj ply off dae stl gltf glb.
 bool IsMeshFile(const std::string& path);
 
