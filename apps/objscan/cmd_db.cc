@@ -174,16 +174,35 @@ int RunEval(const DbArgs& a) {
   j["ms_per_query"] = r.ms_per_query;
   nlohmann::json by_views = nlohmann::json::array();
   for (const auto& v : r.by_views) {
+    // Per category: top-1 of the name given, over the queries of that kind.
+    std::map<std::string, std::pair<int, int>> per_category;  // truth -> (right, queries)
+    std::map<std::string, std::map<std::string, int>> confusion;  // truth -> predicted -> count
+    for (const auto& q : r.queries) {
+      if (q.views != v.views || q.piece != v.piece) continue;
+      auto& c = per_category[world::CategoryName(q.truth)];
+      c.first += q.truth == q.predicted ? 1 : 0;
+      ++c.second;
+      ++confusion[world::CategoryName(q.truth)][world::CategoryName(q.predicted)];
+    }
+    nlohmann::json categories = nlohmann::json::object();
+    for (const auto& [name, c] : per_category) {
+      categories[name] = {{"queries", c.second}, {"top1", static_cast<double>(c.first) / c.second}};
+    }
     by_views.push_back({{"views", v.views},
+                        {"piece", v.piece},
                         {"queries", v.queries},
                         {"top1_category_accuracy", v.top1_category_accuracy},
-                        {"top5_category_accuracy", v.top5_category_accuracy}});
+                        {"top5_category_accuracy", v.top5_category_accuracy},
+                        {"retrieval_top1_accuracy", v.retrieval_top1_accuracy},
+                        {"classifier_top1_accuracy", v.classifier_top1_accuracy},
+                        {"per_category", categories},
+                        {"confusion", confusion}});
   }
   j["by_views"] = by_views;
   j["objectness_models"] = r.objectness_models;
   std::map<std::string, std::map<std::string, int>> confusion;  // single views: truth -> predicted
   for (const auto& q : r.queries) {
-    if (q.views == 1) ++confusion[world::CategoryName(q.truth)][world::CategoryName(q.predicted)];
+    if (q.views == 1 && !q.piece) ++confusion[world::CategoryName(q.truth)][world::CategoryName(q.predicted)];
   }
   j["single_view_confusion"] = confusion;
   j["query_models"] = r.query_models;
@@ -206,11 +225,22 @@ int RunEval(const DbArgs& a) {
     }
     per_query.push_back({{"model", q.model},
                          {"views", q.views},
+                         {"piece", q.piece},
                          {"truth", world::CategoryName(q.truth)},
                          {"predicted", world::CategoryName(q.predicted)},
+                         {"retrieval", world::CategoryName(q.retrieved_category)},
                          {"top5", q.top5},
                          {"retrieved", retrieved}});
-    if (q.classified) per_query.back()["classifier"] = world::CategoryName(q.classifier_choice);
+    if (q.classified) {
+      per_query.back()["classifier"] = world::CategoryName(q.classifier_choice);
+      nlohmann::json posterior = nlohmann::json::object();
+      for (int k = 0; k < world::kNumObjectCategories; ++k) {
+        if (q.posterior[static_cast<std::size_t>(k)] > 0.0) {
+          posterior[world::CategoryName(static_cast<world::Category>(k))] = q.posterior[static_cast<std::size_t>(k)];
+        }
+      }
+      per_query.back()["posterior"] = posterior;
+    }
   }
   j["queries"] = per_query;
   std::printf("%s\n", j.dump(2).c_str());

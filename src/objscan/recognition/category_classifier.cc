@@ -5,11 +5,16 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "objscan/common/rng.h"
 #include "objscan/recognition/model_database.h"
 
 namespace objscan::recognition {
 
 void CategoryClassifierOptions::Validate() const {
+  config::Require(method == "forest" || method == "softmax", "recognition.classifier.method",
+                  "must be 'forest' or 'softmax', not '" + method + "'");
+  config::Require(half_views_per_model >= 0, "recognition.classifier.half_views_per_model", "must be >= 0");
+  forest.Validate();
   config::Require(views_per_model >= 0, "recognition.classifier.views_per_model", "must be >= 0");
   config::RequireInRange("recognition.classifier.low_elevation_deg", low_elevation_deg, -89.0, 89.0);
   config::RequireInRange("recognition.classifier.high_elevation_deg", high_elevation_deg, -89.0, 89.0);
@@ -37,6 +42,14 @@ int Band(const std::array<float, N>& edges, float height_m) {
   return static_cast<int>(std::upper_bound(edges.begin(), edges.end(), height_m) - edges.begin());
 }
 
+// Bands of height above the floor for horizontal surfaces: seats near 0.45 m, tables near 0.75 m,
+// counters near 0.9 m, shelves and tops higher up.
+constexpr std::array<float, 8> kFloorSurfaceEdgesM = {0.15f, 0.35f, 0.55f, 0.7f, 0.85f, 1.05f, 1.4f, 1.9f};
+// D2: distances between point pairs, in metres.
+constexpr std::array<float, 9> kPairDistanceEdgesM = {0.05f, 0.1f, 0.2f, 0.3f, 0.45f, 0.65f, 0.9f, 1.3f, 1.8f};
+constexpr std::array<float, 3> kPairCosEdges = {0.25f, 0.5f, 0.75f};
+constexpr int kPairsPerPoint = 8;
+
 constexpr float kHorizontalMinAbsNz = 0.7f;  // |n_z| above this: a surface facing up or down
 constexpr float kVerticalMaxAbsNz = 0.3f;    // below this: a vertical surface
 constexpr double kTrim = 0.02;               // extents between the 2% and 98% quantiles
@@ -51,7 +64,7 @@ void Softmax(V&& scores) {
 }  // namespace
 
 std::array<float, kNumShapeFeatures> ShapeFeatures(const std::vector<Eigen::Vector3f>& points,
-                                                   const std::vector<Eigen::Vector3f>& normals) {
+                                                   const std::vector<Eigen::Vector3f>& normals, double floor_z_m) {
   std::array<float, kNumShapeFeatures> f{};
   const std::size_t n = std::min(points.size(), normals.size());
   if (n < 8) return f;
@@ -123,8 +136,45 @@ std::array<float, kNumShapeFeatures> ShapeFeatures(const std::vector<Eigen::Vect
   f[k++] = static_cast<float>(lambda(0) / largest);
   f[k++] = in_top_fifth * inv_n;
   f[k++] = radial * inv_n;
+  // Above the floor.
+  const float floor_z = static_cast<float>(floor_z_m);
+  f[k++] = std::clamp(bottom - floor_z, -0.5f, 3.f);
+  f[k++] = std::clamp(top - floor_z, -0.5f, 3.f);
+  std::array<float, kFloorSurfaceEdgesM.size() + 1> floor_surface_share{};
+  std::vector<float> horizontal_above_floor;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::abs(normals[i].z()) <= kHorizontalMinAbsNz) continue;
+    const float h = points[i].z() - floor_z;
+    floor_surface_share[static_cast<std::size_t>(Band(kFloorSurfaceEdgesM, h))] += 1.f;
+    horizontal_above_floor.push_back(h);
+  }
+  for (float s : floor_surface_share) f[k++] = s * inv_n;
+  // Point pairs: each point with kPairsPerPoint others at fixed strides through the set (the
+  // keypoints' order carries no geometry, so these are as good as random pairs and need no seed).
+  std::array<float, kPairDistanceEdgesM.size() + 1> distance_share{};
+  std::array<float, kPairCosEdges.size() + 1> cos_share{};
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int p = 1; p <= kPairsPerPoint; ++p) {
+      const std::size_t j = (i + 1 + static_cast<std::size_t>(static_cast<double>(n - 1) * p / (kPairsPerPoint + 1))) % n;
+      if (j == i) continue;
+      distance_share[static_cast<std::size_t>(Band(kPairDistanceEdgesM, (points[i] - points[j]).norm()))] += 1.f;
+      cos_share[static_cast<std::size_t>(Band(kPairCosEdges, std::abs(normals[i].dot(normals[j]))))] += 1.f;
+    }
+  }
+  const float inv_pairs = 1.f / static_cast<float>(n * kPairsPerPoint);
+  for (float s : distance_share) f[k++] = s * inv_pairs;
+  for (float s : cos_share) f[k++] = s * inv_pairs;
+  if (horizontal_above_floor.empty()) {
+    f[k++] = -0.5f;
+    f[k++] = -0.5f;
+  } else {
+    f[k++] = std::clamp(Quantile(&horizontal_above_floor, 0.25), -0.5f, 3.f);
+    f[k++] = std::clamp(Quantile(&horizontal_above_floor, 0.75), -0.5f, 3.f);
+  }
   return f;
 }
+static_assert(kNumRelativeShapeFeatures == 26 && kNumShapeFeatures == 26 + 2 + 9 + 10 + 4 + 2,
+              "ShapeFeatures' layout and its counts disagree");
 
 CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
                                            const std::vector<world::Category>& labels,
@@ -165,8 +215,21 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
     y(i, class_of[static_cast<std::size_t>(id)]) = 1.0;
     w(i) = 1.0 / (static_cast<double>(classes) * count[static_cast<std::size_t>(id)]);
   }
-  c.weights_ = Eigen::MatrixXd::Zero(classes, d + 1);
   if (classes == 1) return c;
+  if (options.method == "forest") {
+    ForestTrainingSet data;
+    data.num_features = d;
+    data.num_classes = classes;
+    data.features.reserve(static_cast<std::size_t>(n) * d);
+    for (const auto& row : features) data.features.insert(data.features.end(), row.begin(), row.end());
+    for (int i = 0; i < n; ++i) {
+      data.labels.push_back(class_of[static_cast<std::size_t>(world::CategoryId(labels[static_cast<std::size_t>(i)]))]);
+      data.weights.push_back(static_cast<float>(w(i) * n));
+    }
+    c.forest_ = RandomForest::Train(data, options.forest);
+    return c;
+  }
+  c.weights_ = Eigen::MatrixXd::Zero(classes, d + 1);
   Eigen::MatrixXd p(n, classes);
   for (int it = 0; it < options.iterations; ++it) {
     p.noalias() = x * c.weights_.transpose();
@@ -183,15 +246,38 @@ CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, cons
   options.Validate();
   std::vector<std::array<float, kNumShapeFeatures>> features;
   std::vector<world::Category> labels;
-  std::vector<Eigen::Vector3f> seen_points, seen_normals;
-  for (const DatabaseEntry& e : database.entries()) {
-    if (e.kind != EntryKind::kFullModel || e.keypoints.size() != e.keypoint_normals.size()) continue;
-    features.push_back(ShapeFeatures(e.keypoints, e.keypoint_normals));
+  std::vector<Eigen::Vector3f> seen_points, seen_normals, half_points, half_normals;
+  Rng rng(options.seed);
+  // A height above the floor the entry's model stands at in the database's scenes (0 when unknown),
+  // drawn per sample: the floor lies that far below the model frame's z = 0.
+  auto floor_z_of = [&](const DatabaseEntry& e) {
+    if (e.model_index < 0 || e.model_index >= static_cast<std::int32_t>(database.models().size())) return 0.0;
+    const std::vector<float>& heights = database.models()[static_cast<std::size_t>(e.model_index)].support_heights_m;
+    if (heights.empty()) return 0.0;
+    return -static_cast<double>(heights[static_cast<std::size_t>(rng.UniformInt(0, static_cast<int>(heights.size()) - 1))]);
+  };
+  auto add = [&](const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                 const DatabaseEntry& e) {
+    if (points.size() < 8) return;
+    features.push_back(ShapeFeatures(points, normals, floor_z_of(e)));
     labels.push_back(e.category);
-    for (int v = 0; v < options.views_per_model; ++v) {
-      // Azimuths evenly around the model; alternate views at the low and the high elevation.
-      const double azimuth = 2.0 * M_PI * v / options.views_per_model;
-      const double elevation = (v % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
+  };
+  for (const DatabaseEntry& e : database.entries()) {
+    if (e.keypoints.size() != e.keypoint_normals.size()) continue;
+    if (e.kind != EntryKind::kFullModel) {
+      if (options.include_pieces && options.method == "forest") add(e.keypoints, e.keypoint_normals, e);
+      continue;
+    }
+    add(e.keypoints, e.keypoint_normals, e);
+    const int views = options.views_per_model + (options.method == "forest" ? options.half_views_per_model : 0);
+    for (int v = 0; v < views; ++v) {
+      // Azimuths evenly around the model; alternate views at the low and the high elevation. The
+      // half views come after the whole ones, turned by half a step.
+      const bool half = v >= options.views_per_model;
+      const int u = half ? v - options.views_per_model : v;
+      const int per_ring = half ? options.half_views_per_model : options.views_per_model;
+      const double azimuth = 2.0 * M_PI * (u + (half ? 0.5 : 0.0)) / per_ring;
+      const double elevation = (u % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
       const Eigen::Vector3f view(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
                                  static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
                                  static_cast<float>(std::sin(elevation)));
@@ -202,9 +288,25 @@ CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, cons
         seen_points.push_back(e.keypoints[i]);
         seen_normals.push_back(e.keypoint_normals[i]);
       }
-      if (seen_points.size() < 8) continue;
-      features.push_back(ShapeFeatures(seen_points, seen_normals));
-      labels.push_back(e.category);
+      if (!half) {
+        add(seen_points, seen_normals, e);
+        continue;
+      }
+      // A random vertical plane through the view's centroid keeps one side.
+      if (seen_points.empty()) continue;
+      Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+      for (const auto& q : seen_points) centroid += q;
+      centroid /= static_cast<float>(seen_points.size());
+      const double cut = rng.Uniform(0.0, 2.0 * M_PI);
+      const Eigen::Vector3f side(static_cast<float>(std::cos(cut)), static_cast<float>(std::sin(cut)), 0.f);
+      half_points.clear();
+      half_normals.clear();
+      for (std::size_t i = 0; i < seen_points.size(); ++i) {
+        if ((seen_points[i] - centroid).dot(side) < 0.f) continue;
+        half_points.push_back(seen_points[i]);
+        half_normals.push_back(seen_normals[i]);
+      }
+      add(half_points, half_normals, e);
     }
   }
   return Fit(features, labels, options);
@@ -213,6 +315,15 @@ CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, cons
 CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<float, kNumShapeFeatures>& features) const {
   Probabilities out{};
   if (!trained()) return out;
+  if (classes_.size() == 1) {
+    out[static_cast<std::size_t>(world::CategoryId(classes_.front()))] = 1.0;
+    return out;
+  }
+  if (forest_.trained()) {
+    const std::vector<double> p = forest_.Predict(features.data());
+    for (std::size_t c = 0; c < classes_.size(); ++c) out[static_cast<std::size_t>(world::CategoryId(classes_[c]))] = p[c];
+    return out;
+  }
   Eigen::VectorXd x(kNumShapeFeatures + 1);
   for (int j = 0; j < kNumShapeFeatures; ++j) {
     x(j) = (static_cast<double>(features[static_cast<std::size_t>(j)]) - mean_(j)) * inverse_std_(j);

@@ -1,22 +1,29 @@
 #pragma once
-// Beyond the paper: a category classifier trained on the model database's own views, when the
-// database is loaded (deterministic, CPU, no downloaded weights). The paper names an object by the
+// Beyond the paper: the category recognizer, trained on the model database when the database is
+// loaded (deterministic from its seed, CPU, no downloaded weights). The paper names an object by the
 // model that fits it best (M(c), eq. (1)); with a few real models per category a chair fits another
 // room's sofa as closely as another room's chair. The classifier pools what all models of a
-// category share, in metres: how tall, long and wide a shape is, how its surface spreads over
-// height, where it faces up (seats, table tops, shelves) and where it stands vertical. Its
-// probabilities are a prior over categories (RecognitionOptions::classifier_weight).
+// category share, in metres: how tall, long and wide a shape is, how high above the floor it stands
+// and where its surfaces face up (seats, table tops, shelves), how its surface spreads over height
+// and how far apart its points lie (a D2 shape distribution).
 //
-// Training: each full-model entry's keypoints as seen from views_per_model directions around it
-// (keypoints whose outward normal faces the view), and all of them (the model seen from all around);
-// multinomial logistic regression on standardised features, L2-regularised, full-batch gradient
-// descent from zero with class-balanced weights (the database's composition is not a prior).
+// Training data are virtual partial scans of every full model: its keypoints as seen from
+// views_per_model directions around it (keypoints whose outward normal faces the view), all of them,
+// half of a view cut by a random vertical plane (pieces a live scan sees before the rest), and the
+// database's own component and pair entries (the pre-segmented pieces of the model); each sample
+// stands at one of the heights above the floor its model stands at in the database's scenes.
+// Learners (CategoryClassifierOptions::method): a random forest (random_forest.h; the default) or
+// multinomial logistic regression on standardised features (the first version), both class-balanced
+// (the database's composition is not a prior).
 #include <array>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "objscan/common/config.h"
+#include "objscan/recognition/random_forest.h"
 #include "objscan/world/category.h"
 
 namespace objscan::recognition {
@@ -24,20 +31,31 @@ namespace objscan::recognition {
 class ModelDatabase;
 
 struct CategoryClassifierOptions {
+  std::string method = "forest";     // "forest" (random forest) or "softmax" (logistic regression)
   int views_per_model = 16;          // training views per full model, half at each elevation
   double low_elevation_deg = 15.0;   // the two elevations the views look down from
   double high_elevation_deg = 45.0;
   double visible_min_cos = 0.1;      // a keypoint is seen from a view when n . view > this
+  int half_views_per_model = 8;      // views cut in half by a random vertical plane, per full model
+  bool include_pieces = true;        // the database's component and pair entries are samples too
+  std::uint64_t seed = 1;            // half-view cuts and support heights drawn per sample
+  RandomForestOptions forest;
+  // method "softmax": full-batch gradient descent from zero.
   int iterations = 300;
   double learning_rate = 0.5;
   double l2_weight = 1e-3;
 
   template <class V>
   void Visit(V& v) {
+    v("method", method);
     v("views_per_model", views_per_model);
     v("low_elevation_deg", low_elevation_deg);
     v("high_elevation_deg", high_elevation_deg);
     v("visible_min_cos", visible_min_cos);
+    v("half_views_per_model", half_views_per_model);
+    v("include_pieces", include_pieces);
+    v("seed", seed);
+    v("forest", forest);
     v("iterations", iterations);
     v("learning_rate", learning_rate);
     v("l2_weight", l2_weight);
@@ -46,19 +64,25 @@ struct CategoryClassifierOptions {
 };
 
 // The shape features of an upright point set with unit normals (Z up, metres; normals may face
-// either side of the surface): kNumShapeFeatures values, rotation-invariant about Z and independent
-// of where the set stands. Fewer than 8 points give all zeros.
-constexpr int kNumShapeFeatures = 26;
+// either side of the surface) standing over a floor at height floor_z_m: kNumShapeFeatures values,
+// rotation-invariant about Z and independent of where the set stands in XY. The first
+// kNumRelativeShapeFeatures do not depend on the floor either (heights from the set's own bottom);
+// the others are heights above the floor, surfaces per band of height above the floor, and the D2
+// and normal-angle distributions of point pairs. Fewer than 8 points give all zeros.
+constexpr int kNumRelativeShapeFeatures = 26;
+constexpr int kNumShapeFeatures = 53;
 std::array<float, kNumShapeFeatures> ShapeFeatures(const std::vector<Eigen::Vector3f>& points,
-                                                   const std::vector<Eigen::Vector3f>& normals);
+                                                   const std::vector<Eigen::Vector3f>& normals,
+                                                   double floor_z_m = 0.0);
 
 class CategoryClassifier {
  public:
   using Probabilities = std::array<double, world::kNumCategories>;
 
   CategoryClassifier() = default;
-  // Trains on the database's full-model entries (needs their keypoints and keypoint normals).
-  // A database of one category trains a classifier that always answers it.
+  // Trains on the database's full-model entries (needs their keypoints and keypoint normals) and,
+  // with include_pieces, its component and pair entries. A database of one category trains a
+  // classifier that always answers it.
   static CategoryClassifier Train(const ModelDatabase& database, const CategoryClassifierOptions& options);
   // From features and labels directly (rows of `features` are samples); what Train calls.
   static CategoryClassifier Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
@@ -67,15 +91,19 @@ class CategoryClassifier {
   bool trained() const { return !classes_.empty(); }
   // P(category | shape); 0 for categories the training set lacks. All zeros when not trained.
   Probabilities Classify(const std::array<float, kNumShapeFeatures>& features) const;
-  Probabilities Classify(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals) const {
-    return Classify(ShapeFeatures(points, normals));
+  Probabilities Classify(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                         double floor_z_m = 0.0) const {
+    return Classify(ShapeFeatures(points, normals, floor_z_m));
   }
   const std::vector<world::Category>& classes() const { return classes_; }
 
  private:
   std::vector<world::Category> classes_;
+  // method "softmax"
   Eigen::VectorXd mean_, inverse_std_;  // feature standardisation
   Eigen::MatrixXd weights_;             // classes x (features + 1), the last column the bias
+  // method "forest"
+  RandomForest forest_;
 };
 
 }  // namespace objscan::recognition

@@ -7,7 +7,11 @@
 #include <cmath>
 #include <numeric>
 
+#include "objscan/common/error.h"
 #include "objscan/common/rng.h"
+#include "objscan/recognition/database_builder.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/recognition/test_database.h"
 #include "objscan/recognition/test_shapes.h"
 
 namespace objscan::recognition {
@@ -15,7 +19,8 @@ namespace {
 
 // Feature indices (ShapeFeatures' layout).
 constexpr int kLogHeight = 0, kLogLongSide = 1, kLogShortSide = 2, kFirstHeightBand = 5, kFirstSurfaceBand = 15,
-              kVertical = 20, kSurfaceHeight = 21;
+              kVertical = 20, kSurfaceHeight = 21, kBottomAboveFloor = 26, kTopAboveFloor = 27,
+              kFirstFloorSurfaceBand = 28, kFirstPairDistanceBand = 37;
 
 std::vector<Eigen::Vector3f> Transformed(const std::vector<Eigen::Vector3f>& v, const Eigen::Affine3f& T, bool linear) {
   std::vector<Eigen::Vector3f> out;
@@ -38,9 +43,17 @@ TEST(ShapeFeaturesTest, AreTheSameWhereverAndHoweverTurnedAboutZAShapeStands) {
   // Raised: heights count from the shape's bottom. The chair's grid puts points on the bands' edges,
   // where rounding may move a few to the next band.
   const auto raised = ShapeFeatures(Transformed(points, Eigen::Affine3f(Eigen::Translation3f(0.f, 0.f, 0.7f)), false), normals);
-  for (int k = 0; k < kNumShapeFeatures; ++k) {
+  for (int k = 0; k < kNumRelativeShapeFeatures; ++k) {
     SCOPED_TRACE(k);
     EXPECT_NEAR(f[k], raised[k], 0.02f);
+  }
+  // ... and heights above the floor do not, unless the floor rises with it.
+  EXPECT_NEAR(raised[kBottomAboveFloor], f[kBottomAboveFloor] + 0.7f, 0.02f);
+  const auto raised_with_floor =
+      ShapeFeatures(Transformed(points, Eigen::Affine3f(Eigen::Translation3f(0.f, 0.f, 0.7f)), false), normals, 0.7);
+  for (int k = 0; k < kNumShapeFeatures; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_NEAR(f[k], raised_with_floor[k], 0.02f);
   }
 }
 
@@ -58,6 +71,15 @@ TEST(ShapeFeaturesTest, MeasureAKnownBox) {
   // The top lies in the band 0.6-0.9 m (index 2), and nothing else faces up or down.
   for (int b = 0; b < 5; ++b) EXPECT_NEAR(f[kFirstSurfaceBand + b], b == 2 ? 0.5 / 2.9 : 0.0, 0.02) << b;
   EXPECT_NEAR(f[kSurfaceHeight], 0.8, 0.03);
+  // Standing on the floor; the top faces up in the floor band 0.7-0.85 m (index 4).
+  EXPECT_NEAR(f[kBottomAboveFloor], 0.0, 0.03);
+  EXPECT_NEAR(f[kTopAboveFloor], 0.8, 0.03);
+  for (int b = 0; b < 9; ++b) EXPECT_NEAR(f[kFirstFloorSurfaceBand + b], b == 4 ? 0.5 / 2.9 : 0.0, 0.02) << b;
+  // Pair distances: none beyond the box's diagonal (1.37 m), the histogram sums to 1.
+  float pair_sum = 0.f;
+  for (int b = 0; b < 10; ++b) pair_sum += f[kFirstPairDistanceBand + b];
+  EXPECT_NEAR(pair_sum, 1.0f, 1e-4f);
+  EXPECT_EQ(f[kFirstPairDistanceBand + 9], 0.f);  // >= 1.8 m
   // The height histogram sums to 1.
   float sum = 0.f;
   for (int b = 0; b < 10; ++b) sum += f[kFirstHeightBand + b];
@@ -79,7 +101,9 @@ std::array<float, kNumShapeFeatures> RandomBox(bool tall, Rng* rng) {
   return ShapeFeatures(points, normals);
 }
 
-TEST(CategoryClassifierTest, LearnsTwoKindsOfShapesAndNamesUnseenOnes) {
+class CategoryClassifierLearnerTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CategoryClassifierLearnerTest, LearnsTwoKindsOfShapesAndNamesUnseenOnes) {
   Rng rng(11);
   std::vector<std::array<float, kNumShapeFeatures>> features;
   std::vector<world::Category> labels;
@@ -89,7 +113,8 @@ TEST(CategoryClassifierTest, LearnsTwoKindsOfShapesAndNamesUnseenOnes) {
     features.push_back(RandomBox(false, &rng));
     labels.push_back(world::Category::kTable);
   }
-  const CategoryClassifierOptions options;
+  CategoryClassifierOptions options;
+  options.method = GetParam();
   const CategoryClassifier classifier = CategoryClassifier::Fit(features, labels, options);
   ASSERT_TRUE(classifier.trained());
   EXPECT_EQ(classifier.classes().size(), 2u);
@@ -106,6 +131,8 @@ TEST(CategoryClassifierTest, LearnsTwoKindsOfShapesAndNamesUnseenOnes) {
   EXPECT_EQ(classifier.Classify(probe), again.Classify(probe));
 }
 
+INSTANTIATE_TEST_SUITE_P(Learners, CategoryClassifierLearnerTest, ::testing::Values("forest", "softmax"));
+
 TEST(CategoryClassifierTest, OneCategoryIsAlwaysTheAnswerAndNoDataTrainsNothing) {
   Rng rng(3);
   const CategoryClassifier one =
@@ -120,6 +147,61 @@ TEST(CategoryClassifierTest, OneCategoryIsAlwaysTheAnswerAndNoDataTrainsNothing)
   EXPECT_FALSE(CategoryClassifier::Fit({RandomBox(true, &rng)}, {}, CategoryClassifierOptions()).trained());
 }
 
+// Trained on a database of five analytic shapes (one model each), the recognizer names views of
+// them it never saw (noisy surface points, from above at 30 degrees, every 45 degrees around)
+// and halves of such views, and the forest comes out the same at any thread count.
+TEST(CategoryClassifierTest, TrainedOnAShapeDatabaseNamesUnseenViewsAndHalves) {
+  const ModelDatabase db = BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions());
+  CategoryClassifierOptions options;
+  options.forest.num_trees = 24;
+  options.forest.threads = 1;
+  const CategoryClassifier classifier = CategoryClassifier::Train(db, options);
+  ASSERT_TRUE(classifier.trained());
+  options.forest.threads = 3;
+  const CategoryClassifier threaded = CategoryClassifier::Train(db, options);
+  const std::vector<std::pair<testing::ShapeFn, world::Category>> shapes = {
+      {&testing::ChairLike, world::Category::kChair}, {&testing::TableLike, world::Category::kTable},
+      {&testing::ShelfLike, world::Category::kShelves}, {&testing::SofaLike, world::Category::kSofa},
+      {&testing::CabinetLike, world::Category::kCabinet}};
+  Rng rng(17);
+  int right = 0, half_right = 0, total = 0;
+  for (const auto& [shape, category] : shapes) {
+    std::vector<Eigen::Vector3f> points, normals;
+    shape(0.02, &points, &normals);
+    for (int v = 0; v < 8; ++v) {
+      const double azimuth = M_PI / 4.0 * v + 0.2;
+      const Eigen::Vector3f view(static_cast<float>(std::cos(azimuth) * std::cos(M_PI / 6)),
+                                 static_cast<float>(std::sin(azimuth) * std::cos(M_PI / 6)),
+                                 static_cast<float>(std::sin(M_PI / 6)));
+      std::vector<Eigen::Vector3f> seen, seen_normals, half, half_normals;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        if (normals[i].dot(view) <= 0.1f) continue;
+        seen.push_back(points[i] + Eigen::Vector3f(rng.Normal(0, 0.003), rng.Normal(0, 0.003), rng.Normal(0, 0.003)));
+        seen_normals.push_back(normals[i]);
+      }
+      Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+      for (const auto& p : seen) centroid += p;
+      centroid /= static_cast<float>(seen.size());
+      const Eigen::Vector3f side(static_cast<float>(std::cos(azimuth + 1.0)), static_cast<float>(std::sin(azimuth + 1.0)), 0.f);
+      for (std::size_t i = 0; i < seen.size(); ++i) {
+        if ((seen[i] - centroid).dot(side) < 0.f) continue;
+        half.push_back(seen[i]);
+        half_normals.push_back(seen_normals[i]);
+      }
+      auto best = [](const CategoryClassifier::Probabilities& p) {
+        return static_cast<world::Category>(std::max_element(p.begin(), p.end()) - p.begin());
+      };
+      const auto p = classifier.Classify(seen, seen_normals);
+      EXPECT_EQ(p, threaded.Classify(seen, seen_normals));
+      right += best(p) == category ? 1 : 0;
+      half_right += best(classifier.Classify(half, half_normals)) == category ? 1 : 0;
+      ++total;
+    }
+  }
+  EXPECT_GE(right, total * 9 / 10) << right << " of " << total << " views";
+  EXPECT_GE(half_right, total * 7 / 10) << half_right << " of " << total << " halves";
+}
+
 TEST(CategoryClassifierTest, OptionsOutOfRangeNameTheirField) {
   CategoryClassifierOptions options;
   options.iterations = 0;
@@ -129,6 +211,9 @@ TEST(CategoryClassifierTest, OptionsOutOfRangeNameTheirField) {
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("recognition.classifier.iterations"), std::string::npos) << e.what();
   }
+  options = CategoryClassifierOptions();
+  options.method = "svm";
+  EXPECT_THROW(options.Validate(), InputError);
 }
 
 }  // namespace

@@ -140,7 +140,8 @@ std::vector<float> RecognizerComponentMatcher::CategoryOdds(const std::vector<st
   QueryDescription storage;
   const QueryDescription* query = DescribedQuery(component_ids, &storage);
   if (query == nullptr) return {};
-  return recognizer_.CategoryOdds(*query);
+  const std::optional<double> floor = space_ != nullptr ? space_->FloorHeight() : std::nullopt;
+  return recognizer_.CategoryOdds(*query, floor.value_or(0.0));
 }
 
 std::vector<segmentation::MatchResult> RecognizerComponentMatcher::MatchBatch(

@@ -50,6 +50,24 @@ geometry::PointCloud ScanViews(const geometry::TriangleMesh& mesh, int n_views, 
   return ScanModel(mesh, views, scan, options.query_noise, rng).surface;
 }
 
+// Half of a view: the points on one side of a random vertical plane through their centroid.
+geometry::PointCloud HalfOf(const geometry::PointCloud& cloud, Rng* rng) {
+  if (cloud.points.empty()) return cloud;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (const auto& p : cloud.points) centroid += p;
+  centroid /= static_cast<float>(cloud.points.size());
+  const double angle = rng->Uniform(-M_PI, M_PI);
+  const Eigen::Vector3f side(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), 0.f);
+  geometry::PointCloud half;
+  const bool with_normals = cloud.normals.size() == cloud.points.size();
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    if ((cloud.points[i] - centroid).dot(side) < 0.f) continue;
+    half.points.push_back(cloud.points[i]);
+    if (with_normals) half.normals.push_back(cloud.normals[i]);
+  }
+  return half;
+}
+
 }  // namespace
 
 std::vector<ModelSource> ProceduralQuerySources(const ModelDatabase& database, const DatabaseEvalOptions& options) {
@@ -109,10 +127,12 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
   struct Task {
     const ModelSource* source;
     int views;
+    bool piece;
   };
   std::vector<Task> tasks;
   for (const ModelSource* s : sources) {
-    for (int views : {1, 3}) tasks.push_back({s, views});
+    for (int views : {1, 3}) tasks.push_back({s, views, false});
+    if (options.piece_queries) tasks.push_back({s, 1, true});
   }
   // Objectness tasks: database models scanned afresh.
   std::vector<int> objectness_models;
@@ -131,8 +151,10 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
 
   struct TaskResult {
     world::Category predicted = world::Category::kOther;
+    world::Category retrieved_category = world::Category::kOther;
     bool classified = false;
     world::Category classifier_choice = world::Category::kOther;
+    CategoryClassifier::Probabilities posterior{};
     bool top1 = false, top5 = false;
     std::vector<DatabaseEvalResult::Retrieved> retrieved;
     double ms = 0.0;
@@ -149,22 +171,31 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
       // Normalised as the database builder normalises its models (metres, standing on z = 0).
       const geometry::TriangleMesh mesh = RandomlyPlaced(
           NormalizeModel(task.source->load_mesh(), TypicalHeight(task.source->category)), &rng);
-      const geometry::PointCloud surface =
+      geometry::PointCloud surface =
           ScanViews(mesh, task.views, geometry::DegToRad(options.multi_view_step_deg), options, scan, &rng);
+      if (task.piece) surface = HalfOf(surface, &rng);
+      // The floor under the query: it stands where its model stands in its scene.
+      const double floor_z =
+          task.source->support_heights_m.empty() ? 0.0 : -static_cast<double>(task.source->support_heights_m.front());
       const Stopwatch watch;
       const QueryDescription query = recognizer.Describe(surface);
       const std::vector<SimilarModel> similar = recognizer.Retrieve(query, RetrievalScope::kFullModels);
+      r.posterior = recognizer.CategoryPosterior(query, floor_z);
+      std::vector<RetrievedCategory> votes;
+      for (const SimilarModel& s : similar) votes.push_back({database.entries()[s.entry].category, s.rank_score});
+      const CategoryName name = NameCategory(r.posterior, votes, options.recognition.naming);
       r.ms = watch.ElapsedMs();
-      if (!query.category_prior.empty()) {
-        r.classified = true;
-        const auto best = std::max_element(query.category_prior.begin(), query.category_prior.end());
-        r.classifier_choice = static_cast<world::Category>(best - query.category_prior.begin());
+      r.classified = recognizer.classifier().trained();
+      if (r.classified) {
+        const auto best = std::max_element(r.posterior.begin(), r.posterior.end());
+        r.classifier_choice = static_cast<world::Category>(best - r.posterior.begin());
       }
-      if (!similar.empty()) {
-        r.predicted = database.entries()[similar.front().entry].category;
+      if (!similar.empty()) r.retrieved_category = database.entries()[similar.front().entry].category;
+      if (name.named) {
+        r.predicted = name.category;
         r.top1 = r.predicted == task.source->category;
-        for (const auto& s : similar) r.top5 = r.top5 || database.entries()[s.entry].category == task.source->category;
       }
+      for (const auto& s : similar) r.top5 = r.top5 || database.entries()[s.entry].category == task.source->category;
       for (const SimilarModel& s : similar) {
         const DatabaseEntry& e = database.entries()[s.entry];
         r.retrieved.push_back({e.name, e.category, s.rank_score, s.bow_score, s.fit,
@@ -195,21 +226,38 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
   });
 
   double ms_sum = 0.0;
-  for (int views : {1, 3}) {
+  for (const auto& [views, piece] : {std::pair<int, bool>{1, false}, {3, false}, {1, true}}) {
     ViewCountAccuracy acc;
     acc.views = views;
+    acc.piece = piece;
     for (int t = 0; t < n_tasks; ++t) {
-      if (tasks[t].views != views) continue;
+      if (tasks[t].views != views || tasks[t].piece != piece) continue;
+      const world::Category truth = tasks[t].source->category;
       ++acc.queries;
       acc.top1_category_accuracy += results[t].top1 ? 1.0 : 0.0;
       acc.top5_category_accuracy += results[t].top5 ? 1.0 : 0.0;
+      acc.retrieval_top1_accuracy += results[t].retrieved_category == truth ? 1.0 : 0.0;
+      acc.classifier_top1_accuracy += results[t].classified && results[t].classifier_choice == truth ? 1.0 : 0.0;
       ms_sum += results[t].ms;
-      out.queries.push_back({tasks[t].source->category, results[t].predicted, views, results[t].top5,
-                             tasks[t].source->name, std::move(results[t].retrieved), results[t].classified,
-                             results[t].classifier_choice});
+      DatabaseEvalResult::Query q;
+      q.truth = truth;
+      q.predicted = results[t].predicted;
+      q.retrieved_category = results[t].retrieved_category;
+      q.views = views;
+      q.piece = piece;
+      q.top5 = results[t].top5;
+      q.model = tasks[t].source->name;
+      q.retrieved = std::move(results[t].retrieved);
+      q.classified = results[t].classified;
+      q.classifier_choice = results[t].classifier_choice;
+      q.posterior = results[t].posterior;
+      out.queries.push_back(std::move(q));
     }
-    acc.top1_category_accuracy /= std::max(1, acc.queries);
-    acc.top5_category_accuracy /= std::max(1, acc.queries);
+    if (acc.queries == 0) continue;
+    acc.top1_category_accuracy /= acc.queries;
+    acc.top5_category_accuracy /= acc.queries;
+    acc.retrieval_top1_accuracy /= acc.queries;
+    acc.classifier_top1_accuracy /= acc.queries;
     out.by_views.push_back(acc);
   }
   out.top1_category_accuracy = out.by_views[0].top1_category_accuracy;

@@ -26,6 +26,9 @@ struct DatabaseEvalOptions {
   double min_elevation_deg = 15.0;    // query views look down on the model from this range
   double max_elevation_deg = 45.0;
   double multi_view_step_deg = 45.0;  // azimuth step between the views of a multi-view query
+  // Piece queries: a single view cut by a random vertical plane through its centroid, one side kept
+  // (half an object, as the live pre-segmentation often sees one before the rest joins it).
+  bool piece_queries = true;
   std::uint64_t seed = 7;
   int threads = 0;
   VirtualScanOptions scan;
@@ -40,6 +43,7 @@ struct DatabaseEvalOptions {
     v("min_elevation_deg", min_elevation_deg);
     v("max_elevation_deg", max_elevation_deg);
     v("multi_view_step_deg", multi_view_step_deg);
+    v("piece_queries", piece_queries);
     v("seed", seed);
     v("threads", threads);
     v("scan", scan);
@@ -50,9 +54,12 @@ struct DatabaseEvalOptions {
 
 struct ViewCountAccuracy {
   int views = 0;
+  bool piece = false;  // half of a single view
   int queries = 0;
-  double top1_category_accuracy = 0.0;
+  double top1_category_accuracy = 0.0;  // the category the recognizer names (RecognizedCategory)
   double top5_category_accuracy = 0.0;  // the true category among the n_s retrieved
+  double retrieval_top1_accuracy = 0.0;  // the category of the best retrieved model alone (the paper)
+  double classifier_top1_accuracy = 0.0;  // the category classifier's first choice alone
 };
 
 struct DatabaseEvalResult {
@@ -80,15 +87,17 @@ struct DatabaseEvalResult {
   // Per query: true and predicted category, for confusion analysis, and M(c).
   struct Query {
     world::Category truth = world::Category::kOther;
-    world::Category predicted = world::Category::kOther;
+    world::Category predicted = world::Category::kOther;  // RecognizedCategory
+    world::Category retrieved_category = world::Category::kOther;  // of the best retrieved model
     int views = 1;
+    bool piece = false;
     bool top5 = false;
     std::string model;  // the query's ModelSource::name
     std::vector<Retrieved> retrieved;
-    // The category classifier's own first choice (RecognitionOptions::classifier_weight > 0), and
-    // whether it is trained at all.
+    // The category classifier's own first choice and posterior, and whether it is trained at all.
     bool classified = false;
     world::Category classifier_choice = world::Category::kOther;
+    CategoryClassifier::Probabilities posterior{};
   };
   std::vector<Query> queries;
   // Query sources left out because the database has no model of their category, and the number of

@@ -36,6 +36,7 @@ void RecognitionOptions::Validate() const {
   config::RequireNonNegative("recognition.support_height_tolerance_m", support_height_tolerance_m);
   config::RequireNonNegative("recognition.classifier_weight", classifier_weight);
   classifier.Validate();
+  naming.Validate();
   config::Require(space_tolerance >= 0.0 && space_tolerance < 1.0, "recognition.space_tolerance", "must be in [0, 1)");
   alignment.Validate();
 }
@@ -62,10 +63,15 @@ const CategoryClassifier& Recognizer::classifier() const {
   return classifier_;
 }
 
-std::vector<float> Recognizer::CategoryOdds(const QueryDescription& query) const {
+CategoryClassifier::Probabilities Recognizer::CategoryPosterior(const QueryDescription& query, double floor_z_m) const {
+  if (query.keypoints.empty()) return CategoryClassifier::Probabilities{};
+  return classifier().Classify(query.keypoints, query.keypoint_normals, floor_z_m);
+}
+
+std::vector<float> Recognizer::CategoryOdds(const QueryDescription& query, double floor_z_m) const {
   std::vector<float> odds;
   if (query.keypoints.empty()) return odds;
-  const CategoryClassifier::Probabilities p = classifier().Classify(query.keypoints, query.keypoint_normals);
+  const CategoryClassifier::Probabilities p = CategoryPosterior(query, floor_z_m);
   const double best = *std::max_element(p.begin(), p.end());
   odds.assign(p.size(), 0.f);
   if (!(best > 0.0)) return odds;

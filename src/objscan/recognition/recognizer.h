@@ -12,6 +12,7 @@
 #include "objscan/geometry/point_cloud.h"
 #include "objscan/recognition/alignment.h"
 #include "objscan/recognition/category_classifier.h"
+#include "objscan/recognition/category_naming.h"
 #include "objscan/recognition/descriptor.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/recognition/objectness.h"
@@ -93,6 +94,8 @@ struct RecognitionOptions {
   // lose in proportion to how much less likely the classifier finds them. 0 = off (the paper).
   double classifier_weight = 0.0;
   CategoryClassifierOptions classifier;
+  // How a segment's category is named from M(c) and the classifier (category_naming.h).
+  CategoryNamingOptions naming;
   AlignmentOptions alignment;
   // The memory a model database may take once loaded (about ModelDatabase::kMemoryPerFileByte times
   // its file); a larger one fails to load with one line naming this key instead of running out of
@@ -123,6 +126,7 @@ struct RecognitionOptions {
     v("support_height_tolerance_m", support_height_tolerance_m);
     v("classifier_weight", classifier_weight);
     v("classifier", classifier);
+    v("naming", naming);
     v("alignment", alignment);
     v("max_database_memory_mb", max_database_memory_mb);
   }
@@ -200,7 +204,10 @@ class Recognizer {
   const CategoryClassifier& classifier() const;
   // P(k | query) / max_j P(j | query) per world::CategoryId k from the classifier (empty for an
   // empty query): how much less likely than its first choice the classifier finds each category.
-  std::vector<float> CategoryOdds(const QueryDescription& query) const;
+  // floor_z_m: the height of the floor under the query (world frame).
+  std::vector<float> CategoryOdds(const QueryDescription& query, double floor_z_m = 0.0) const;
+  // P(k | query) per world::CategoryId k (all zeros for an empty query or no classifier).
+  CategoryClassifier::Probabilities CategoryPosterior(const QueryDescription& query, double floor_z_m = 0.0) const;
 
  private:
   // Objectness, fit and visible objectness of `points` (the query's keypoints, or a subset of them)
