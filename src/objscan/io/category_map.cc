@@ -16,6 +16,7 @@ struct CategoryMap::Rule {
   std::string where;  // "FILE: rule N" for messages
   std::optional<std::regex> name, uri, label;
   std::optional<world::Category> category;
+  bool skip = false;        // `category: skip`
   std::string suncg_table;  // non-empty: a SUNCG rule
 };
 
@@ -116,8 +117,11 @@ void CategoryMap::LoadFile(const std::string& path, std::vector<std::string>* st
           rule.label = CompilePattern(field.second, rule.where, "label");
         } else if (key == "category") {
           const std::string name = field.second.as<std::string>();
+          rule.skip = name == "skip";
           rule.category = world::ParseCategory(name);
-          if (!rule.category) throw InputError(rule.where + ": unknown category '" + name + "'");
+          if (!rule.category && !rule.skip) {
+            throw InputError(rule.where + ": unknown category '" + name + "' (a category name or 'skip')");
+          }
         } else if (key == "suncg") {
           rule.suncg_table = relative(field.second.as<std::string>());
           if (!fs::is_regular_file(rule.suncg_table, ec)) {
@@ -129,8 +133,8 @@ void CategoryMap::LoadFile(const std::string& path, std::vector<std::string>* st
       }
       const bool has_pattern = rule.name || rule.uri || rule.label;
       if (!rule.suncg_table.empty()) {
-        if (has_pattern || rule.category) throw InputError(rule.where + ": a 'suncg' rule has no other keys");
-      } else if (!has_pattern || !rule.category) {
+        if (has_pattern || rule.category || rule.skip) throw InputError(rule.where + ": a 'suncg' rule has no other keys");
+      } else if (!has_pattern || !(rule.category || rule.skip)) {
         throw InputError(rule.where + ": a rule needs a pattern (name, uri or label) and a category");
       }
       rules_.push_back(std::move(rule));
@@ -144,6 +148,12 @@ void CategoryMap::LoadFile(const std::string& path, std::vector<std::string>* st
 }
 
 std::optional<world::Category> CategoryMap::Lookup(const ModelIdentity& model) const {
+  const std::optional<CategoryRuleMatch> match = Match(model);
+  if (!match || match->skip) return std::nullopt;
+  return match->category;
+}
+
+std::optional<CategoryRuleMatch> CategoryMap::Match(const ModelIdentity& model) const {
   for (const Rule& rule : rules_) {
     if (!rule.suncg_table.empty()) {
       SuncgCache& cache = *suncg_cache_;
@@ -163,12 +173,12 @@ std::optional<world::Category> CategoryMap::Lookup(const ModelIdentity& model) c
         throw InputError("model '" + model.name + "': SUNCG class '" + classes->fine_grained + "' of model id '" +
                          model.model_id + "' has no objscan category in " + table->path());
       }
-      return category;
+      return CategoryRuleMatch{false, category};
     }
     if (rule.name && !std::regex_search(model.name, *rule.name)) continue;
     if (rule.uri && !SearchAny(*rule.uri, model.uris)) continue;
     if (rule.label && !SearchAny(*rule.label, model.labels)) continue;
-    return rule.category;
+    return CategoryRuleMatch{rule.skip, rule.category};
   }
   return std::nullopt;
 }

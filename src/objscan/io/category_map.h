@@ -9,6 +9,8 @@
 //     - {label: '^(kitchen )?cabinets?$', category: cabinet}  # ... in any label (ScanNet, NYU40)
 //     - {suncg: ../suncg_categories.csv}        # SUNCG id via ModelCategoryMapping.csv + this table
 //
+//     - {label: '^Vehicles$', category: skip}  # leave the model out (model databases; see Match)
+//
 // Patterns ignore case. A rule with several of name/uri/label needs all of them to match. Paths
 // (include, suncg) are relative to the map file. The `suncg` rule looks the model id up in the
 // ModelCategoryMapping.csv found in the scene's folder or one of its parents (the OASC layout) and
@@ -33,6 +35,12 @@ struct ModelIdentity {
   std::string source_dir;           // folder of the scene file (ModelCategoryMapping.csv is searched from here)
 };
 
+// What the first matching rule of a map says.
+struct CategoryRuleMatch {
+  bool skip = false;                        // `category: skip`: leave the model out
+  std::optional<world::Category> category;  // the category otherwise
+};
+
 class CategoryMap {
  public:
   CategoryMap();
@@ -44,9 +52,12 @@ class CategoryMap {
   // a bad regex, an unknown category or an include cycle.
   static CategoryMap Load(const std::string& path);
 
-  // The category of the first matching rule; nullopt when no rule matches. Throws InputError when a
-  // SUNCG class has no category in the rule's table.
+  // The category of the first matching rule; nullopt when no rule matches or the first that matches
+  // is a `skip` rule (scene loaders treat it as unmatched). Throws InputError when a SUNCG class has no
+  // category in the rule's table.
   std::optional<world::Category> Lookup(const ModelIdentity& model) const;
+  // The first matching rule's category or skip; nullopt when no rule matches. Same errors as Lookup.
+  std::optional<CategoryRuleMatch> Match(const ModelIdentity& model) const;
 
   const std::string& path() const { return path_; }
   std::size_t NumRules() const;

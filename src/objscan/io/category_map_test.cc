@@ -47,6 +47,29 @@ TEST(CategoryMapTest, FirstMatchingRuleWinsAndPatternsIgnoreCase) {
   EXPECT_EQ(map.Lookup(Named("chair")), std::nullopt);  // a name is not a label
 }
 
+TEST(CategoryMapTest, SkipRulesLeaveModelsOut) {
+  TempDir dir;
+  WriteText(dir.File("map.yaml"),
+            "rules:\n"
+            "  - {label: '^Vehicles$', category: skip}\n"
+            "  - {name: 'car', category: other}\n");
+  const CategoryMap map = CategoryMap::Load(dir.File("map.yaml"));
+  ModelIdentity car = Named("Sports car");
+  car.labels = {"Vehicles"};
+  const std::optional<CategoryRuleMatch> skipped = map.Match(car);
+  ASSERT_TRUE(skipped.has_value());
+  EXPECT_TRUE(skipped->skip);
+  EXPECT_FALSE(skipped->category.has_value());
+  EXPECT_EQ(map.Lookup(car), std::nullopt);  // scene loaders: as unmatched
+  const std::optional<CategoryRuleMatch> model = map.Match(Named("Car model"));
+  ASSERT_TRUE(model.has_value());
+  EXPECT_FALSE(model->skip);
+  EXPECT_EQ(model->category, Category::kOther);
+  EXPECT_EQ(map.Match(Named("Chair")), std::nullopt);
+  WriteText(dir.File("bad.yaml"), "rules:\n  - {name: 'a', category: skipped}\n");
+  ExpectInputError([&] { CategoryMap::Load(dir.File("bad.yaml")); }, "unknown category 'skipped' (a category name or 'skip')");
+}
+
 TEST(CategoryMapTest, IncludedMapsComeFirstInOrder) {
   TempDir dir;
   WriteText(dir.File("a.yaml"), "rules:\n  - {name: 'x', category: chair}\n");
@@ -107,7 +130,7 @@ TEST(CategoryMapTest, MalformedMapsNameFileAndRule) {
 
 TEST(CategoryMapTest, ShippedMapsResolveAgainstTheConfigFolder) {
   for (const char* name : {"categories/default.yaml", "categories/suncg.yaml", "categories/aws-robomaker.yaml",
-                           "categories/scannet.yaml"}) {
+                           "categories/scannet.yaml", "categories/sweethome3d.yaml"}) {
     SCOPED_TRACE(name);
     const std::string path = ResolveCategoryMapPath(name);
     EXPECT_EQ(path, ConfigDir() + "/" + name);
