@@ -144,6 +144,18 @@ std::vector<float> RecognizerComponentMatcher::CategoryOdds(const std::vector<st
   return recognizer_.CategoryOdds(*query, floor.value_or(0.0));
 }
 
+std::optional<world::Category> RecognizerComponentMatcher::NameCategory(const std::vector<std::int32_t>& component_ids,
+                                                                       const std::vector<RetrievedCategory>& votes) {
+  const std::vector<float> odds = CategoryOdds(component_ids);
+  if (odds.empty()) return std::nullopt;
+  // Odds are the posterior over its maximum: the same argmax.
+  CategoryClassifier::Probabilities p{};
+  for (std::size_t k = 0; k < p.size() && k < odds.size(); ++k) p[k] = odds[k];
+  const CategoryName name = recognition::NameCategory(p, votes, recognizer_.options().naming);
+  if (!name.named) return std::nullopt;
+  return name.category;
+}
+
 std::vector<segmentation::MatchResult> RecognizerComponentMatcher::MatchBatch(
     const std::vector<std::vector<std::int32_t>>& queries, segmentation::MatchScope scope) {
   if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");

@@ -38,6 +38,10 @@ class RecognizerComponentMatcher : public segmentation::ComponentMatcher {
                                                          world::Category category);
   // Recognizer::CategoryOdds of the union's description (empty when it has none).
   std::vector<float> CategoryOdds(const std::vector<std::int32_t>& component_ids);
+  // The category the union is named by from the classifier and `votes` (its models' categories and
+  // scores) with RecognitionOptions::naming (category_naming.h); nullopt without a description.
+  std::optional<world::Category> NameCategory(const std::vector<std::int32_t>& component_ids,
+                                              const std::vector<RetrievedCategory>& votes);
 
  private:
   // Describes (in parallel) every component named in `queries` whose description is not cached at

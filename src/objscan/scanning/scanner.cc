@@ -865,6 +865,10 @@ struct Scanner::State {
     std::vector<float> CategoryOdds(const std::vector<std::int32_t>& labels) override {
       return s_.matcher.CategoryOdds(labels);
     }
+    std::optional<world::Category> NameCategory(const std::vector<std::int32_t>& labels,
+                                                const std::vector<recognition::RetrievedCategory>& votes) override {
+      return s_.matcher.NameCategory(labels, votes);
+    }
 
    private:
     State& s_;

@@ -38,6 +38,27 @@ void ModelLabelRule::Apply(const ReportContext& /*context*/, ReportedObjects* ob
   }
 }
 
+void NameByShapeRule::Apply(const ReportContext& context, ReportedObjects* objects) const {
+  for (std::size_t i = 0; i < objects->size(); ++i) {
+    const ReportedObject& o = (*objects)[i];
+    if (!o.reported() || !o.record.category) continue;
+    std::vector<recognition::RetrievedCategory> votes;
+    if (o.full_matches != nullptr) {
+      for (const segmentation::ModelMatch& m : o.full_matches->models) votes.push_back({m.category, m.objectness});
+    } else {
+      votes.push_back({*o.record.category, o.record.objectness});
+    }
+    const std::optional<world::Category> named = context.sources->NameCategory(o.record.labels, votes);
+    if (!named || named == o.record.category) continue;
+    const std::optional<segmentation::ModelMatch> best = context.sources->BestOfCategory(o.record.labels, *named);
+    if (best) {
+      objects->Adopt(i, *best, context.sources->ModelName(best->model_id), name());
+    } else {
+      objects->Relabel(i, *named, name());
+    }
+  }
+}
+
 void AbsorbFragmentsRule::Apply(const ReportContext& context, ReportedObjects* objects) const {
   std::vector<FragmentCandidate> candidates(objects->size());
   for (std::size_t i = 0; i < objects->size(); ++i) {

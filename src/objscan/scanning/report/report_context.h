@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "objscan/recognition/category_extent.h"
+#include "objscan/recognition/category_naming.h"
 #include "objscan/scanning/report/reported_objects.h"
 #include "objscan/segmentation/post_matcher.h"
 #include "objscan/world/category.h"
@@ -40,6 +41,13 @@ class ReportSources {
   // The category classifier's odds for the union, P(k) / max_j P(j) per world::CategoryId k
   // (recognition::Recognizer::CategoryOdds); empty when there is no classifier or no description.
   virtual std::vector<float> CategoryOdds(const std::vector<std::int32_t>& /*labels*/) { return {}; }
+  // The category recognition names the union by from the category classifier and `votes` (the
+  // categories and scores of its models; recognition/category_naming.h); nullopt when it cannot
+  // (no classifier, no description).
+  virtual std::optional<world::Category> NameCategory(const std::vector<std::int32_t>& /*labels*/,
+                                                      const std::vector<recognition::RetrievedCategory>& /*votes*/) {
+    return std::nullopt;
+  }
 };
 
 struct ReportContext {

@@ -19,6 +19,7 @@ std::vector<std::string> AllReportRules() {
   std::vector<std::string> all = {"reopen_outgrown"};
   for (const std::string& name : DefaultReportRules()) all.push_back(name);
   all.push_back("shape_agrees");
+  all.push_back("name_by_shape");
   return all;
 }
 
@@ -38,6 +39,7 @@ std::unique_ptr<ReportRule> MakeReportRule(const std::string& name, const Report
   if (name == "drop_small") return std::make_unique<DropSmallRule>(options.min_reported_elements);
   if (name == "drop_unsure") return std::make_unique<DropUnsureRule>(options.min_labelled_objectness);
   if (name == "shape_agrees") return std::make_unique<ShapeAgreesRule>(options.shape_min_odds);
+  if (name == "name_by_shape") return std::make_unique<NameByShapeRule>();
   return nullptr;
 }
 

@@ -188,6 +188,17 @@ class ShapeAgreesRule : public ReportRule {
   double min_odds_;
 };
 
+// name_by_shape: a labelled object is named by both recognizers (recognition/category_naming.h):
+// the category classifier's posterior for its points and its full models' categories and
+// objectness (an unfinished object's M(r), a completed object's own model). A new name brings the
+// best model of that category when there is one. The paper names the best model's category; with a
+// few real models per category the nearest instance is often another category's.
+class NameByShapeRule : public ReportRule {
+ public:
+  const char* name() const override { return "name_by_shape"; }
+  void Apply(const ReportContext& context, ReportedObjects* objects) const override;
+};
+
 // The rule named `name` with its options from `options`; null for an unknown name.
 std::unique_ptr<ReportRule> MakeReportRule(const std::string& name, const ReportOptions& options);
 

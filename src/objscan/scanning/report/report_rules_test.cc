@@ -53,6 +53,16 @@ class FakeSources : public ReportSources {
     auto it = category_odds.find(labels);
     return it == category_odds.end() ? std::vector<float>() : it->second;
   }
+  // As the scanner's: the odds stand for the posterior (same argmax), default naming options.
+  std::optional<Category> NameCategory(const std::vector<std::int32_t>& labels,
+                                       const std::vector<recognition::RetrievedCategory>& votes) override {
+    const std::vector<float> odds = CategoryOdds(labels);
+    if (odds.empty()) return std::nullopt;
+    recognition::CategoryClassifier::Probabilities p{};
+    for (std::size_t k = 0; k < odds.size(); ++k) p[k] = odds[k];
+    const recognition::CategoryName name = recognition::NameCategory(p, votes, recognition::CategoryNamingOptions());
+    return name.named ? std::optional<Category>(name.category) : std::nullopt;
+  }
   segmentation::MatchResult MatchFullModels(const std::vector<std::int32_t>& labels) override {
     auto it = full_matches.find(labels);
     return it == full_matches.end() ? segmentation::MatchResult() : it->second;
@@ -413,6 +423,39 @@ TEST(ReportRulesTest, ShapeAgreesTakesLabelsTheClassifierFindsUnlikely) {
   EXPECT_FALSE(strict.record(tie).category.has_value());
 }
 
+TEST(ReportRulesTest, NameByShapeNamesWhatBothRecognizersSupport) {
+  ReportCase c;
+  // M(r): sofa 0.9 best, chair 0.8; the classifier finds chair 10 times as likely as sofa: chair.
+  const int renamed = c.AddUnfinished(1, Box({1, 1, 0}, {1.5, 1.5, 0.9}), Category::kSofa,
+                                      {Match(Category::kSofa, 0.9, 1), Match(Category::kChair, 0.8, 2)}, 0.9);
+  c.sources.category_odds[{1}] = Odds(Category::kChair, Category::kSofa, 0.1f);
+  c.sources.best_of_category[{{1}, Category::kChair}] = Match(Category::kChair, 0.8, 2);
+  // The classifier leans to table, which M(r) lacks: 1 x 0.5 x 0.85 = 0.43 < 0.6 x 0.9 for the bed: kept.
+  const int kept = c.AddUnfinished(2, Box({3, 1, 0}, {3.5, 1.5, 0.5}), Category::kBed,
+                                   {Match(Category::kBed, 0.9, 3), Match(Category::kSofa, 0.85, 4)}, 0.9);
+  std::vector<float> leaning(world::kNumCategories, 0.f);
+  leaning[world::CategoryId(Category::kTable)] = 1.f;
+  leaning[world::CategoryId(Category::kBed)] = 0.6f;
+  c.sources.category_odds[{2}] = leaning;
+  // A new name without a model of its category keeps the object's model: only the label changes.
+  const int relabelled = c.AddUnfinished(3, Box({5, 1, 0}, {5.5, 1.5, 0.5}), Category::kRadio,
+                                         {Match(Category::kRadio, 0.5, 5)}, 0.5);
+  c.sources.category_odds[{3}] = Odds(Category::kLamp, Category::kRadio, 0.05f);
+  const int no_classifier = c.AddUnfinished(4, Box({7, 1, 0}, {7.5, 1.5, 0.5}), Category::kChair,
+                                            {Match(Category::kChair, 0.9, 6)}, 0.9);
+  const int unlabelled = c.AddUnfinished(5, Box({9, 1, 0}, {9.5, 1.5, 0.5}), std::nullopt, {}, 0.3);
+  c.sources.category_odds[{5}] = Odds(Category::kLamp, Category::kRadio, 0.05f);
+  c.Apply(NameByShapeRule());
+  EXPECT_EQ(c.record(renamed).category, Category::kChair);
+  EXPECT_EQ(c.record(renamed).model, "m2");
+  EXPECT_EQ(LastChange(c.record(renamed)).rule, "name_by_shape");
+  EXPECT_EQ(c.record(kept).category, Category::kBed);
+  EXPECT_TRUE(c.record(kept).label_changes.empty());
+  EXPECT_EQ(c.record(relabelled).category, Category::kLamp);
+  EXPECT_EQ(c.record(no_classifier).category, Category::kChair);
+  EXPECT_FALSE(c.record(unlabelled).category.has_value());  // unrecognized stays so
+}
+
 TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
   // A door label on a cabinet-deep thing: door_depth takes it and relabel gives it the confident
   // match; in the other order relabel finds nothing taken yet and the label is gone at the end.
@@ -437,7 +480,7 @@ TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
 TEST(ReportPipelineTest, DefaultListNamesEveryRuleOnceAndUnknownNamesAreRejected) {
   const std::vector<std::string> all = AllReportRules();
   EXPECT_EQ(std::set<std::string>(all.begin(), all.end()).size(), all.size());
-  EXPECT_EQ(DefaultReportRules().size() + 2, all.size());  // + reopen_outgrown, shape_agrees
+  EXPECT_EQ(DefaultReportRules().size() + 3, all.size());  // + reopen_outgrown, shape_agrees, name_by_shape
   ReportOptions options;
   for (const auto& name : all) EXPECT_NE(MakeReportRule(name, options), nullptr) << name;
   EXPECT_TRUE(ReportPipeline(options).needs_category_extents());
