@@ -65,8 +65,10 @@ ModelDatabase TinyDatabase(bool two_models) {
     DatabaseModel lamp;
     lamp.name = "lamp_b";
     lamp.category = Category::kLamp;
-    lamp.source = "models/lamp/b.obj";
+    lamp.source = "sweethome3d:/usr/share/sweethome3d/furniture/Test.sh3f#Test#lamp";
     lamp.full_entry = 3;  // support heights unknown
+    lamp.creator = "Jos\xc3\xa9";  // credits (format 4)
+    lamp.license = "CC-BY 3.0";
     db.mutable_models().push_back(lamp);
     DatabaseEntry lamp_full = Entry(EntryKind::kFullModel, Category::kLamp, "lamp_b", 1, 7);
     BoxPoints(0.3f, 0.3f, 1.6f, &lamp_full.points, &lamp_full.normals);

@@ -1,5 +1,5 @@
 // `objscan db`: build, inspect and evaluate the 3D model database (paper §4.2).
-//   objscan db build --models DIR|WORLD...|procedural --out F.db   -> JSON summary on stdout
+//   objscan db build --models DIR|WORLD...|procedural|sweethome3d|X.sh3f --out F.db -> JSON summary on stdout
 //   objscan db info F.db                                  -> JSON counts and model sizes per category
 //   objscan db eval --db F.db [--queries procedural|DIR|WORLD...] -> JSON accuracy, objectness, timing
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli_util.h"
@@ -17,12 +18,15 @@
 #include "objscan/common/error.h"
 #include "objscan/common/timer.h"
 #include "objscan/eval/benchmark.h"
+#include "objscan/io/category_map.h"
 #include "objscan/io/scannet.h"
+#include "objscan/io/sweethome3d.h"
 #include "objscan/io/scene_spec.h"
 #include "objscan/recognition/category_extent.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/database_eval.h"
 #include "objscan/recognition/model_database.h"
+#include "objscan/recognition/sweethome3d_sources.h"
 
 namespace objscan::app {
 namespace {
@@ -53,9 +57,13 @@ void ApplySets(const std::vector<std::string>& sets, Options* options) {
 // The models named by `specs` (--models of build, --queries of eval), in the order given: 'procedural'
 // (the built-in generator's models, --variants per category), model folders, and scenes (Gazebo
 // worlds, ScanNet scans, ...) whose categorised objects are taken once per model id. Mixing them
-// builds, e.g., the built-in models together with a user's own.
+// builds, e.g., the built-in models together with a user's own. 'sweethome3d' (every catalog of
+// $OBJSCAN_SWEETHOME3D_DIR or /usr/share/sweethome3d/furniture) and X.sh3f take Sweet Home 3D
+// furniture catalogs through --category-map or config/categories/sweethome3d.yaml; what they leave
+// out goes to *sh3d (or, when it is null, a count to stderr).
 std::vector<recognition::ModelSource> ModelSourcesFrom(const std::vector<std::string>& specs, const DbArgs& a,
-                                                       const char* option, std::vector<std::string>* skipped) {
+                                                       const char* option, std::vector<std::string>* skipped,
+                                                       recognition::SweetHome3dSources* sh3d = nullptr) {
   std::vector<recognition::ModelSource> sources;
   namespace fs = std::filesystem;
   io::SceneLoadOptions load;
@@ -78,6 +86,29 @@ std::vector<recognition::ModelSource> ModelSourcesFrom(const std::vector<std::st
       const std::vector<recognition::ModelSource> generated = recognition::ProceduralModelSources(
           a.variants, 0, recognition::ParseProceduralSampling(a.sampling, "--sampling"));
       sources.insert(sources.end(), generated.begin(), generated.end());
+    } else if (recognition::IsSweetHome3dSpec(spec)) {
+      add_worlds();
+      const io::CategoryMap map = io::CategoryMap::Load(io::ResolveCategoryMapPath(
+          a.category_map.empty() ? std::string(recognition::kSweetHome3dCategoryMap) : a.category_map));
+      recognition::SweetHome3dSources from_catalogs =
+          recognition::SweetHome3dModelSources(recognition::SweetHome3dCatalogsOf(spec), map);
+      if (from_catalogs.sources.empty()) {
+        throw InputError(std::string(option) + " " + spec + ": no piece of furniture has a category in " + map.path());
+      }
+      sources.insert(sources.end(), from_catalogs.sources.begin(), from_catalogs.sources.end());
+      if (sh3d == nullptr) {
+        if (!from_catalogs.skipped.empty() || !from_catalogs.unmatched.empty()) {
+          std::fprintf(stderr, "objscan: %s: %zu Sweet Home 3D pieces left out (%zu by skip rules, %zu matched no rule of %s)\n",
+                       spec.c_str(), from_catalogs.skipped.size() + from_catalogs.unmatched.size(),
+                       from_catalogs.skipped.size(), from_catalogs.unmatched.size(), map.path().c_str());
+        }
+      } else {
+        from_catalogs.sources.clear();
+        for (auto& c : from_catalogs.catalogs) sh3d->catalogs.push_back(std::move(c));
+        sh3d->skipped.insert(sh3d->skipped.end(), from_catalogs.skipped.begin(), from_catalogs.skipped.end());
+        sh3d->unmatched.insert(sh3d->unmatched.end(), from_catalogs.unmatched.begin(), from_catalogs.unmatched.end());
+        for (const auto& [category, n] : from_catalogs.models_per_category) sh3d->models_per_category[category] += n;
+      }
     } else if (fs::is_directory(spec) && !io::IsScanNetSpec(spec)) {
       add_worlds();
       const std::vector<recognition::ModelSource> folder = recognition::ModelSourcesFromFolder(spec, skipped);
@@ -96,7 +127,8 @@ int RunBuild(const DbArgs& a) {
   options.seed = a.seed;
   ApplySets(a.sets, &options);
   std::vector<std::string> skipped;
-  const std::vector<recognition::ModelSource> sources = ModelSourcesFrom(a.models, a, "--models", &skipped);
+  recognition::SweetHome3dSources sh3d;
+  const std::vector<recognition::ModelSource> sources = ModelSourcesFrom(a.models, a, "--models", &skipped, &sh3d);
   const Stopwatch watch;
   const recognition::ModelDatabase db =
       recognition::BuildDatabase(sources, options, TerminalProgress("db build"));
@@ -108,6 +140,19 @@ int RunBuild(const DbArgs& a) {
   j["entries"] = db.entries().size();
   j["models_without_points"] = sources.size() - db.models().size();
   j["skipped_folders"] = skipped;
+  if (!sh3d.catalogs.empty()) {
+    nlohmann::json catalogs = nlohmann::json::array();
+    for (const auto& c : sh3d.catalogs) {
+      catalogs.push_back({{"file", c.file}, {"name", c.name}, {"license", c.license}, {"license_text", c.license_text},
+                          {"pieces", c.pieces}, {"models", c.models}});
+    }
+    j["sweethome3d"] = {{"catalogs", catalogs},
+                        {"models_per_category", sh3d.models_per_category},
+                        {"left_out_by_skip_rules", sh3d.skipped.size()},
+                        {"left_out_unmatched", sh3d.unmatched.size()},
+                        {"skipped", sh3d.skipped},
+                        {"unmatched", sh3d.unmatched}};
+  }
   j["seconds"] = watch.ElapsedSeconds();
   std::printf("%s\n", j.dump(2).c_str());
   return 0;
@@ -144,6 +189,20 @@ int RunInfo(const DbArgs& a) {
   j["vocabulary_words"] = db.vocabulary().num_words();
   j["keypoints_per_entry"] = db.settings().keypoints.num_keypoints;
   j["descriptor"] = db.settings().descriptor.type;
+  // Credits: models made by someone (Sweet Home 3D catalogs), per catalog, creator and licence.
+  std::map<std::tuple<std::string, std::string, std::string>, int> credit_counts;
+  for (const auto& m : db.models()) {
+    if (m.creator.empty() && m.license.empty()) continue;
+    const std::string catalog = io::SweetHome3dSourceCatalog(m.source);
+    ++credit_counts[{catalog.empty() ? std::string() : std::filesystem::path(catalog).filename().string(), m.creator,
+                     m.license}];
+  }
+  nlohmann::json credits = nlohmann::json::array();
+  for (const auto& [key, n] : credit_counts) {
+    credits.push_back({{"catalog", std::get<0>(key)}, {"creator", std::get<1>(key)}, {"license", std::get<2>(key)},
+                       {"models", n}});
+  }
+  j["credits"] = credits;
   j["load_ms"] = load_ms;
   std::printf("%s\n", j.dump(2).c_str());
   return 0;
@@ -172,6 +231,8 @@ int RunEval(const DbArgs& a) {
   j["objectness_complete_mean"] = r.objectness_complete_mean;
   j["objectness_partial_mean"] = r.objectness_partial_mean;
   j["ms_per_query"] = r.ms_per_query;
+  j["classifier_train_s"] = r.classifier_train_s;
+  j["classify_ms_per_query"] = r.classify_ms_per_query;
   nlohmann::json by_views = nlohmann::json::array();
   for (const auto& v : r.by_views) {
     // Per category: top-1 of the name given, over the queries of that kind.
@@ -255,10 +316,13 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   auto* build = cmd->add_subcommand("build", "Build a model database from a folder of models or procedurally");
   build->add_option("--models", args->models,
                     "DIR of <category>/<name>.{obj,off,ply,dae,stl,glb}, scene SPECs (.world, ScanNet scan, ...: "
-                    "their categorised objects), or 'procedural'")
+                    "their categorised objects), 'procedural', 'sweethome3d' (Sweet Home 3D catalogs of "
+                    "$OBJSCAN_SWEETHOME3D_DIR or /usr/share/sweethome3d/furniture) or a catalog X.sh3f")
       ->required();
   build->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs of --models worlds");
-  build->add_option("--category-map", args->category_map, "category map YAML for --models worlds and scans");
+  build->add_option("--category-map", args->category_map,
+                    "category map YAML for --models worlds, scans and Sweet Home 3D catalogs (these default to "
+                    "categories/sweethome3d.yaml)");
   build->add_option("--out", args->out, "output database file F.db")->required();
   build->add_option("--variants", args->variants, "procedural models per category")->default_str("8");
   build->add_option("--sampling", args->sampling,
@@ -274,7 +338,8 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   eval->add_option("--db", args->eval_db, "database file")->required();
   eval->add_option("--queries", args->queries,
                    "query models, as --models of build: 'procedural' (unseen generator models), a DIR of "
-                   "<category>/<name>.<ext>, or scene SPECs (.world, ...: their categorised objects)")
+                   "<category>/<name>.<ext>, scene SPECs (.world, ...: their categorised objects), 'sweethome3d' "
+                   "or a catalog X.sh3f")
       ->default_str("procedural");
   eval->add_option("--queries-per-category", args->queries_per_category,
                    "query models per category (the first ones; 0 = all)")

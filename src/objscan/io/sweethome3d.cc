@@ -367,6 +367,39 @@ geometry::TriangleMesh LoadSweetHome3dMesh(const std::string& catalog_path, cons
   return LoadSweetHome3dMesh(ZipArchive::Open(catalog_path), *piece);
 }
 
+namespace {
+constexpr const char* kSourcePrefix = "sweethome3d:";
+}  // namespace
+
+std::string SweetHome3dSource(const std::string& catalog_path, const std::string& piece_id) {
+  return kSourcePrefix + catalog_path + "#" + piece_id;
+}
+
+bool IsSweetHome3dSource(const std::string& source) { return source.rfind(kSourcePrefix, 0) == 0; }
+
+namespace {
+// Where the catalog path of a source string ends (at its "#"); npos when it is not one.
+std::size_t SourceCatalogEnd(const std::string& source) {
+  if (!IsSweetHome3dSource(source)) return std::string::npos;
+  const std::size_t at = Lower(source).find(".sh3f#", std::string(kSourcePrefix).size());
+  return at == std::string::npos ? at : at + std::string(".sh3f").size();
+}
+}  // namespace
+
+std::string SweetHome3dSourceCatalog(const std::string& source) {
+  const std::size_t hash = SourceCatalogEnd(source);
+  const std::size_t prefix = std::string(kSourcePrefix).size();
+  return hash == std::string::npos ? std::string() : source.substr(prefix, hash - prefix);
+}
+
+geometry::TriangleMesh LoadSweetHome3dSource(const std::string& source) {
+  const std::size_t hash = SourceCatalogEnd(source);
+  if (hash == std::string::npos) {
+    throw InputError("model source '" + source + "': not of the form sweethome3d:<catalog>.sh3f#<piece id>");
+  }
+  return LoadSweetHome3dMesh(SweetHome3dSourceCatalog(source), source.substr(hash + 1));
+}
+
 std::string SweetHome3dCatalogDir() {
   const char* env = std::getenv("OBJSCAN_SWEETHOME3D_DIR");
   return env != nullptr && env[0] != '\0' ? std::string(env) : std::string(kDefaultCatalogDir);

@@ -79,6 +79,16 @@ geometry::TriangleMesh ParseObj(const std::string& text, const std::string& wher
 // converted to objscan's frame (Z up, metres), centred in X and Y with its bottom on z = 0.
 geometry::TriangleMesh PlaceSweetHome3dModel(const geometry::TriangleMesh& model, const SweetHome3dPiece& piece);
 
+// A piece as one string, as model databases store a model's source: "sweethome3d:<catalog path>#<id>"
+// (the id may itself hold '#': the catalog path ends at the first ".sh3f#", case ignored).
+std::string SweetHome3dSource(const std::string& catalog_path, const std::string& piece_id);
+bool IsSweetHome3dSource(const std::string& source);
+// The catalog path of a SweetHome3dSource string; "" for another string.
+std::string SweetHome3dSourceCatalog(const std::string& source);
+// The mesh of a SweetHome3dSource string (LoadSweetHome3dMesh); throws InputError naming the source
+// when it is malformed, or as LoadSweetHome3dMesh.
+geometry::TriangleMesh LoadSweetHome3dSource(const std::string& source);
+
 // Folder of the catalogs: $OBJSCAN_SWEETHOME3D_DIR when set and not empty, else Debian's
 // /usr/share/sweethome3d/furniture.
 std::string SweetHome3dCatalogDir();

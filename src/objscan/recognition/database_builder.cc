@@ -12,6 +12,7 @@
 #include "objscan/common/error.h"
 #include "objscan/common/rng.h"
 #include "objscan/io/mesh_io.h"
+#include "objscan/io/sweethome3d.h"
 #include "objscan/recognition/keypoints.h"
 #include "objscan/sim/parallel_for.h"
 #include "objscan/world/procedural/procedural.h"
@@ -432,6 +433,8 @@ geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model) {
       throw InputError("model source '" + model.source + "': bad procedural seed");
     }
     mesh = world::procedural::GenerateFurniture(*category, seed).mesh;
+  } else if (io::IsSweetHome3dSource(model.source)) {
+    mesh = io::LoadSweetHome3dSource(model.source);
   } else {
     mesh = io::LoadMesh(model.source);
   }
@@ -445,6 +448,8 @@ struct ModelInfo {
   std::string name;
   std::string source;
   std::vector<float> support_heights_m;
+  std::string creator;
+  std::string license;
 };
 
 // Vocabulary, histograms and index from described models.
@@ -492,6 +497,8 @@ ModelDatabase Assemble(std::vector<PendingModel>* pending_models, const std::vec
     model.category = info[m].category;
     model.source = info[m].source;
     model.support_heights_m = info[m].support_heights_m;
+    model.creator = info[m].creator;
+    model.license = info[m].license;
     const int model_index = static_cast<int>(db.models().size());
     for (auto& pe : pending[m].entries) {
       descriptors.resize(pe.descriptors.size());
@@ -529,7 +536,7 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   int done = 0;
   sim::ParallelForBlocks(n_models, workers, [&](int m) {
     const ModelSource& source = sources[m];
-    info[m] = {source.category, source.name, source.source, source.support_heights_m};
+    info[m] = {source.category, source.name, source.source, source.support_heights_m, source.creator, source.license};
     const geometry::TriangleMesh mesh = NormalizeModel(source.load_mesh(), TypicalHeight(source.category));
     if (!mesh.Empty()) {
       Rng noise_rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(m)));
@@ -552,7 +559,7 @@ ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, co
   std::vector<PendingModel> pending(n_models);
   std::vector<ModelInfo> info(n_models);
   sim::ParallelForBlocks(n_models, options.threads, [&](int m) {
-    info[m] = {models[m].category, models[m].name, models[m].source, models[m].support_heights_m};
+    info[m] = {models[m].category, models[m].name, models[m].source, models[m].support_heights_m, {}, {}};
     pending[m] = DescribeScan(models[m].scan, models[m].category, models[m].name, m, options, *descriptor);
   });
   return Assemble(&pending, info, options, *descriptor, progress);

@@ -69,6 +69,9 @@ struct ModelSource {
   // Heights above the floor at which the model (or, for procedural models, its category) stands in
   // the scenes it comes from (DatabaseModel::support_heights_m); empty when unknown.
   std::vector<float> support_heights_m;
+  // Credits carried into DatabaseModel (creator and licence of a catalog's model; empty when unknown).
+  std::string creator;
+  std::string license;
 };
 
 // Models of a folder: <category>/<name>.<ext> and ModelNet-style <category>/{train,test}/<name>.<ext>

@@ -172,6 +172,8 @@ void ModelDatabase::Save(const std::string& path) const {
     w.Pod<std::int32_t>(m.full_entry);
     w.Pod<std::uint32_t>(static_cast<std::uint32_t>(m.support_heights_m.size()));
     w.Array(m.support_heights_m.data(), m.support_heights_m.size());
+    w.String(m.creator);
+    w.String(m.license);
   }
   // Entries.
   w.Pod<std::uint32_t>(static_cast<std::uint32_t>(entries_.size()));
@@ -317,7 +319,7 @@ ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, 
   }
   const std::uint32_t num_bins = db.NumBins();
 
-  const std::uint32_t n_models = r.Count(4 + 4 + 4 + 4 + 4, "models");
+  const std::uint32_t n_models = r.Count(4 + 4 + 4 + 4 + 4 + 4 + 4, "models");
   db.models_.resize(n_models);
   for (auto& m : db.models_) {
     m.name = r.String("model name");
@@ -329,6 +331,8 @@ ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, 
     for (float h : m.support_heights_m) {
       if (!std::isfinite(h)) r.Fail("model support heights");
     }
+    m.creator = r.String("model creator");
+    m.license = r.String("model license");
   }
   const std::uint32_t n_entries = r.Count(1 + 4 + 4 + 4 + 4 + 4 + 4, "entries");
   db.entries_.resize(n_entries);

@@ -49,6 +49,10 @@ struct DatabaseModel {
   // the floor, one per placement seen (a monitor on desks, a lamp on the floor and on night stands);
   // empty when unknown (models from a folder of meshes).
   std::vector<float> support_heights_m;
+  // Credits of a model made by someone (Sweet Home 3D catalogs: the piece's creator and its catalog's
+  // licence); empty when not known (procedural models, plain mesh folders).
+  std::string creator;
+  std::string license;
 };
 
 // How the entries were described; a query is described with the same settings.
@@ -63,7 +67,8 @@ class ModelDatabase {
  public:
   // 2: spatial BoW with absolute-height, normal and size words (settings layout changed).
   // 3: each model's support heights.
-  static constexpr std::uint32_t kFormatVersion = 3;
+  // 4: each model's creator and licence.
+  static constexpr std::uint32_t kFormatVersion = 4;
 
   ModelDatabase() = default;
   ModelDatabase(ModelDatabase&&) = default;
