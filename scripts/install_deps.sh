@@ -16,6 +16,8 @@ packages=(
   # compiler-rt, which on Debian 12 holds the ASan/UBSan runtimes and libclang_rt.fuzzer used by
   # -fsanitize=fuzzer (libfuzzer-14-dev only adds a standalone libFuzzer.a, not needed).
   clang libclang-rt-dev
+  # Sweet Home 3D's furniture catalogs (.sh3f): `objscan db build --models sweethome3d`.
+  sweethome3d-furniture
   # The Python module (python/, pybind11) for the system python3, and numpy for its arrays.
   pybind11-dev python3-dev python3-numpy
   # scripts/slurm/bench_array.sh is tested on a one-node cluster the test starts (slurmctld + slurmd).
