@@ -15,6 +15,7 @@
 
 #include "objscan/common/rng.h"
 #include "objscan/recognition/alignment.h"
+#include "objscan/recognition/category_classifier.h"
 #include "objscan/recognition/fpfh_descriptor.h"
 #include "objscan/recognition/keypoints.h"
 #include "objscan/recognition/objectness.h"
@@ -222,6 +223,33 @@ void BM_LoadDatabase(benchmark::State& state) {
   std::filesystem::remove(path);
 }
 BENCHMARK(BM_LoadDatabase)->Unit(benchmark::kMillisecond);
+
+// The category recognizer: training on a database of n entries (its full models' views and half
+// views, its components and pairs), both learners side by side; and naming one query (features and
+// posterior) with a trained forest and with softmax regression.
+void BM_TrainCategoryClassifier(benchmark::State& state) {
+  const ModelDatabase& db = ScaledDatabase(static_cast<int>(state.range(0)));
+  CategoryClassifierOptions options;
+  options.method = state.range(1) == 0 ? "forest" : "softmax";
+  options.forest.threads = 1;
+  for (auto _ : state) benchmark::DoNotOptimize(CategoryClassifier::Train(db, options));
+}
+BENCHMARK(BM_TrainCategoryClassifier)
+    ->Args({400, 0})
+    ->Args({400, 1})
+    ->ArgNames({"entries", "softmax"})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ClassifyCategory(benchmark::State& state) {
+  const ModelDatabase& db = BaseDatabase();
+  CategoryClassifierOptions options;
+  options.method = state.range(0) == 0 ? "forest" : "softmax";
+  options.forest.threads = 1;
+  const CategoryClassifier classifier = CategoryClassifier::Train(db, options);
+  const DatabaseEntry& query = db.entries().front();
+  for (auto _ : state) benchmark::DoNotOptimize(classifier.Classify(query.keypoints, query.keypoint_normals));
+}
+BENCHMARK(BM_ClassifyCategory)->Arg(0)->Arg(1)->ArgName("softmax")->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

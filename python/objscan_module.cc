@@ -123,9 +123,14 @@ PyDatabase LoadDatabase(const std::string& path, double max_memory_mb) {
   });
 }
 
-PyDatabase DefaultDatabase(const std::optional<std::string>& cache_dir) {
+// The built-in database of a scene: procedural scenes (and none given) the procedural one, every other
+// scene the real one (the Sweet Home 3D library), as `objscan run`.
+PyDatabase DefaultDatabase(const std::optional<std::string>& cache_dir, const std::optional<std::string>& scene) {
   const std::string dir = cache_dir ? *cache_dir : recognition::DefaultDatabaseCacheDir();
-  const std::string path = Call({}, [&] { return recognition::EnsureDefaultDatabase(dir); });
+  const bool procedural = !scene || recognition::UsesProceduralDatabase(*scene);
+  const std::string path = Call({}, [&] {
+    return procedural ? recognition::EnsureDefaultDatabase(dir) : recognition::EnsureRealDatabase(dir);
+  });
   return LoadDatabase(path, 0.0);
 }
 
@@ -181,7 +186,7 @@ class Scan {
       scanning::CheckSceneLimits(*scene_.scene, config, scene_.spec);
       return config;
     });
-    database_ = database ? *database : DefaultDatabase(std::nullopt);
+    database_ = database ? *database : DefaultDatabase(std::nullopt, scene_.spec);
     Call({}, [&] {
       std::set<world::Category> known;
       for (const auto& m : database_.database->models()) known.insert(m.category);
@@ -544,9 +549,11 @@ PYBIND11_MODULE(objscan, m) {
   m.def("load_database", &LoadDatabase, py::arg("path"), py::arg("max_memory_mb") = 0.0,
         "Loads a database file (objscan db build --out F.db). max_memory_mb: refuse one needing more "
         "(0: the memory available).");
-  m.def("default_database", &DefaultDatabase, py::arg("cache_dir") = py::none(),
-        "The built-in procedural database of `objscan run` (built once, minutes, and cached in "
-        "$OBJSCAN_CACHE_DIR or ~/.cache/objscan; the same file the program uses).");
+  m.def("default_database", &DefaultDatabase, py::arg("cache_dir") = py::none(), py::arg("scene") = py::none(),
+        "The built-in database `objscan run` uses for `scene`: the procedural one for procedural scenes "
+        "(and when no scene is given), the real one (the Sweet Home 3D library) for every other scene; "
+        "built once, minutes, and cached in $OBJSCAN_CACHE_DIR or ~/.cache/objscan (the same files the "
+        "program uses).");
   m.def("build_database", &BuildDatabase, py::arg("models") = std::vector<std::string>{"procedural"},
         py::arg("out") = py::none(), py::arg("variants") = 8, py::arg("sampling") = "style-medoids",
         py::arg("sets") = std::vector<std::string>{}, py::arg("seed") = 1, py::arg("threads") = 0,

@@ -7,8 +7,9 @@
 #
 # BENCH_OUT: the output folder of `objscan bench --suite oasc-dev --db-from-worlds` (its db/worlds/*.db
 # are the model-disjoint databases; a bench killed after its databases were built is enough).
-# OUT: one JSON per world (resumable) and a summary on stdout: top-1 and top-5 category accuracy over
-# the queries whose category is not `other`, the share predicted `other`, and the `other` queries.
+# OUT: one JSON per world (resumable) and a summary on stdout (scripts/recognition_summary.py): top-1 over
+# the queries whose category is not `other` (whole from 1 and 3 views, pieces), per category and as named,
+# by the best model alone and by the classifier alone.
 # --set overrides recognition options (e.g. recognition.shortlist_size=60).
 # Environment: OBJSCAN (the binary, default build/objscan), OBJSCAN_SHARED (default ../shared),
 # OBJSCAN_JOBS (threads per eval, default every core).
@@ -40,23 +41,4 @@ for db in "${dbs[@]}"; do
     --queries-per-category 0 --threads "${threads}" "$@" > "${out}/${w}.json.tmp" 2> "${out}/${w}.err"
   mv "${out}/${w}.json.tmp" "${out}/${w}.json"
 done
-python3 - "${out}" <<'EOF'
-import glob, json, sys
-queries = []
-for f in sorted(glob.glob(sys.argv[1] + "/*.json")):
-    queries += json.load(open(f))["queries"]
-for views in (1, 3):
-    q = [x for x in queries if x["views"] == views and x["truth"] != "other"]
-    o = [x for x in queries if x["views"] == views and x["truth"] == "other"]
-    if not q:
-        continue
-    top1 = sum(x["truth"] == x["predicted"] for x in q) / len(q)
-    top5 = sum(x["top5"] for x in q) / len(q)
-    pred_other = sum(x["predicted"] == "other" for x in q) / len(q)
-    other_ok = sum(x["predicted"] == "other" for x in o) / max(1, len(o))
-    line = (f"views {views}: {len(q)} queries, top-1 {top1:.3f}, top-5 {top5:.3f}, predicted other {pred_other:.3f}; "
-            f"{len(o)} other queries, predicted other {other_ok:.3f}")
-    if all("classifier" in x for x in q):  # recognition.classifier_weight > 0: the classifier's own first choice
-        line += f"; classifier alone top-1 {sum(x['truth'] == x['classifier'] for x in q) / len(q):.3f}"
-    print(line)
-EOF
+python3 "${root}/scripts/recognition_summary.py" "${out}"/*.json

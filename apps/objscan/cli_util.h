@@ -22,6 +22,9 @@ PoseArg ParsePoseArg(const std::string& text, const std::string& option_name);
 
 // The built-in procedural model database: built on first use and cached (cmd_run.cc); returns its path.
 std::string DefaultDatabasePath(bool verbose);
+// The built-in database for a scene (recognition::UsesProceduralDatabase): procedural scenes the
+// procedural one, every other scene the real one (the Sweet Home 3D library); built on first use.
+std::string DefaultDatabasePathFor(const std::string& scene_spec, bool verbose);
 
 // The memory limit of a model database in bytes (ModelDatabase::Load): recognition.max_database_memory_mb,
 // or when that is 0 the memory the machine has available now (MemAvailable; 0 = no limit when unknown).

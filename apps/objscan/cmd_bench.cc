@@ -192,7 +192,8 @@ int RunBench(const BenchArgs& a) {
       }
     }
   } else if (!pending.empty()) {
-    const std::string base = a.db.empty() ? DefaultDatabasePath(true) : a.db;
+    const std::string base =
+        !a.db.empty() ? a.db : suite.name == "procedural" ? DefaultDatabasePath(true) : DefaultDatabasePathFor("", true);
     const std::string no_parts = (db_dir / "no-parts.db").string();
     // Checked (and built) once, not once per run: verifying reads the whole file.
     if (std::any_of(pending.begin(), pending.end(), [](const eval::BenchJob& job) { return job.method.database_without_parts; })) {
@@ -297,7 +298,7 @@ void AddBenchCommand(CLI::App& root, RunFn* run) {
       "stderr.txt and failed.json); the report to OUT/report/. Exit status 1 when a run failed.");
   cmd->add_option("--suite", args->suite, "suite NAME (procedural, oasc-dev) or a DIR searched for .world files")
       ->required();
-  cmd->add_option("--db", args->db, "model database file (default: the built-in procedural database)");
+  cmd->add_option("--db", args->db, "model database file (default: the built-in procedural database for the procedural suite, the built-in real one, the Sweet Home 3D library, for suites of worlds)");
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--jobs", args->jobs, "parallel runs (0 = number of cores)")->capture_default_str();
   cmd->add_option("--methods", args->methods, "comma-separated methods (default: all)");

@@ -67,6 +67,25 @@ std::string DefaultDatabasePath(bool verbose) {
   return path;
 }
 
+std::string DefaultDatabasePathFor(const std::string& scene_spec, bool verbose) {
+  if (recognition::UsesProceduralDatabase(scene_spec)) return DefaultDatabasePath(verbose);
+  const std::string path = recognition::EnsureRealDatabase(
+      recognition::DefaultDatabaseCacheDir(), TerminalProgress("database"),
+      [verbose](const recognition::CachedDatabaseStatus& status, const std::string& db_path) {
+        if (!status.damage.empty()) {
+          std::fprintf(stderr, "objscan: the cached model database is damaged, rebuilding it: %s\n",
+                       status.damage.c_str());
+        } else if (verbose) {
+          std::fprintf(stderr,
+                       "objscan: building the real model database from the Sweet Home 3D library (once, a few "
+                       "minutes; cached in %s)\n",
+                       db_path.c_str());
+        }
+      });
+  FinishProgress();
+  return path;
+}
+
 namespace {
 
 // The run's objects reported under each variant of the report options, scored like the run.
@@ -121,7 +140,7 @@ int RunScan(const RunArgs& args) {
   const std::vector<eval::ReportVariant> variants = eval::LoadReportVariants(config.eval.report_variants, config.report);
   const world::Scene scene = io::LoadScene(args.scene, config.scene);
   scanning::CheckSceneLimits(scene, config, args.scene);
-  const std::string db_path = args.db.empty() ? DefaultDatabasePath(!args.quiet) : args.db;
+  const std::string db_path = args.db.empty() ? DefaultDatabasePathFor(args.scene, !args.quiet) : args.db;
   const recognition::ModelDatabase database = recognition::ModelDatabase::Load(
       db_path, DatabaseMemoryLimitBytes(config.recognition.max_database_memory_mb));
   if (database.models().empty()) throw InputError(db_path + ": the model database is empty");
@@ -180,7 +199,7 @@ void AddRunCommand(CLI::App& root, RunFn* run) {
   auto* cmd = root.add_subcommand("run", "Scan a scene autonomously (NBO + NBV) and write a labelled reconstruction");
   cmd->add_option("--scene", args->scene, "scene SPEC: .world, .yaml/.json scene file, ScanNet scan folder or *_vh_clean_2.ply, mesh, or procedural:CATEGORY:SEED")
       ->capture_default_str();
-  cmd->add_option("--db", args->db, "model database file (default: built-in procedural database, built once and cached)");
+  cmd->add_option("--db", args->db, "model database file (default: the built-in procedural database for procedural scenes, the built-in real one, the Sweet Home 3D library, for every other scene; built once and cached)");
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--seed", args->seed, "random seed (sensor noise and every random choice)")->capture_default_str();
   cmd->add_option("--config", args->config_file, "YAML config file (see config/default.yaml)");

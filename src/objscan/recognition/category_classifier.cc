@@ -243,6 +243,11 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
 }
 
 CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, const CategoryClassifierOptions& options) {
+  return Train(std::vector<const ModelDatabase*>{&database}, options);
+}
+
+CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDatabase*>& databases,
+                                             const CategoryClassifierOptions& options) {
   options.Validate();
   std::vector<std::array<float, kNumShapeFeatures>> features;
   std::vector<world::Category> labels;
@@ -250,9 +255,10 @@ CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, cons
   Rng rng(options.seed);
   // A height above the floor the entry's model stands at in the database's scenes (0 when unknown),
   // drawn per sample: the floor lies that far below the model frame's z = 0.
+  const ModelDatabase* database = nullptr;  // the one whose entries are being read
   auto floor_z_of = [&](const DatabaseEntry& e) {
-    if (e.model_index < 0 || e.model_index >= static_cast<std::int32_t>(database.models().size())) return 0.0;
-    const std::vector<float>& heights = database.models()[static_cast<std::size_t>(e.model_index)].support_heights_m;
+    if (e.model_index < 0 || e.model_index >= static_cast<std::int32_t>(database->models().size())) return 0.0;
+    const std::vector<float>& heights = database->models()[static_cast<std::size_t>(e.model_index)].support_heights_m;
     if (heights.empty()) return 0.0;
     return -static_cast<double>(heights[static_cast<std::size_t>(rng.UniformInt(0, static_cast<int>(heights.size()) - 1))]);
   };
@@ -262,51 +268,54 @@ CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, cons
     features.push_back(ShapeFeatures(points, normals, floor_z_of(e)));
     labels.push_back(e.category);
   };
-  for (const DatabaseEntry& e : database.entries()) {
-    if (e.keypoints.size() != e.keypoint_normals.size()) continue;
-    if (e.kind != EntryKind::kFullModel) {
-      if (options.include_pieces && options.method == "forest") add(e.keypoints, e.keypoint_normals, e);
-      continue;
-    }
-    add(e.keypoints, e.keypoint_normals, e);
-    const int views = options.views_per_model + (options.method == "forest" ? options.half_views_per_model : 0);
-    for (int v = 0; v < views; ++v) {
-      // Azimuths evenly around the model; alternate views at the low and the high elevation. The
-      // half views come after the whole ones, turned by half a step.
-      const bool half = v >= options.views_per_model;
-      const int u = half ? v - options.views_per_model : v;
-      const int per_ring = half ? options.half_views_per_model : options.views_per_model;
-      const double azimuth = 2.0 * M_PI * (u + (half ? 0.5 : 0.0)) / per_ring;
-      const double elevation = (u % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
-      const Eigen::Vector3f view(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
-                                 static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
-                                 static_cast<float>(std::sin(elevation)));
-      seen_points.clear();
-      seen_normals.clear();
-      for (std::size_t i = 0; i < e.keypoints.size(); ++i) {
-        if (e.keypoint_normals[i].dot(view) <= options.visible_min_cos) continue;
-        seen_points.push_back(e.keypoints[i]);
-        seen_normals.push_back(e.keypoint_normals[i]);
-      }
-      if (!half) {
-        add(seen_points, seen_normals, e);
+  for (const ModelDatabase* db : databases) {
+    database = db;
+    for (const DatabaseEntry& e : database->entries()) {
+      if (e.keypoints.size() != e.keypoint_normals.size()) continue;
+      if (e.kind != EntryKind::kFullModel) {
+        if (options.include_pieces && options.method == "forest") add(e.keypoints, e.keypoint_normals, e);
         continue;
       }
-      // A random vertical plane through the view's centroid keeps one side.
-      if (seen_points.empty()) continue;
-      Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-      for (const auto& q : seen_points) centroid += q;
-      centroid /= static_cast<float>(seen_points.size());
-      const double cut = rng.Uniform(0.0, 2.0 * M_PI);
-      const Eigen::Vector3f side(static_cast<float>(std::cos(cut)), static_cast<float>(std::sin(cut)), 0.f);
-      half_points.clear();
-      half_normals.clear();
-      for (std::size_t i = 0; i < seen_points.size(); ++i) {
-        if ((seen_points[i] - centroid).dot(side) < 0.f) continue;
-        half_points.push_back(seen_points[i]);
-        half_normals.push_back(seen_normals[i]);
+      add(e.keypoints, e.keypoint_normals, e);
+      const int views = options.views_per_model + (options.method == "forest" ? options.half_views_per_model : 0);
+      for (int v = 0; v < views; ++v) {
+        // Azimuths evenly around the model; alternate views at the low and the high elevation. The
+        // half views come after the whole ones, turned by half a step.
+        const bool half = v >= options.views_per_model;
+        const int u = half ? v - options.views_per_model : v;
+        const int per_ring = half ? options.half_views_per_model : options.views_per_model;
+        const double azimuth = 2.0 * M_PI * (u + (half ? 0.5 : 0.0)) / per_ring;
+        const double elevation = (u % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
+        const Eigen::Vector3f view(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
+                                   static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
+                                   static_cast<float>(std::sin(elevation)));
+        seen_points.clear();
+        seen_normals.clear();
+        for (std::size_t i = 0; i < e.keypoints.size(); ++i) {
+          if (e.keypoint_normals[i].dot(view) <= options.visible_min_cos) continue;
+          seen_points.push_back(e.keypoints[i]);
+          seen_normals.push_back(e.keypoint_normals[i]);
+        }
+        if (!half) {
+          add(seen_points, seen_normals, e);
+          continue;
+        }
+        // A random vertical plane through the view's centroid keeps one side.
+        if (seen_points.empty()) continue;
+        Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+        for (const auto& q : seen_points) centroid += q;
+        centroid /= static_cast<float>(seen_points.size());
+        const double cut = rng.Uniform(0.0, 2.0 * M_PI);
+        const Eigen::Vector3f side(static_cast<float>(std::cos(cut)), static_cast<float>(std::sin(cut)), 0.f);
+        half_points.clear();
+        half_normals.clear();
+        for (std::size_t i = 0; i < seen_points.size(); ++i) {
+          if ((seen_points[i] - centroid).dot(side) < 0.f) continue;
+          half_points.push_back(seen_points[i]);
+          half_normals.push_back(seen_normals[i]);
+        }
+        add(half_points, half_normals, e);
       }
-      add(half_points, half_normals, e);
     }
   }
   return Fit(features, labels, options);

@@ -39,6 +39,10 @@ struct CategoryClassifierOptions {
   int half_views_per_model = 8;      // views cut in half by a random vertical plane, per full model
   bool include_pieces = true;        // the database's component and pair entries are samples too
   std::uint64_t seed = 1;            // half-view cuts and support heights drawn per sample
+  // Model databases whose models are training samples too, beside the recognizer's own (e.g. a
+  // furniture library beside a database of a benchmark's models): the classifier learns categories
+  // from many shapes while retrieval keeps its database. Loaded when the classifier is trained.
+  std::vector<std::string> extra_training_databases;
   RandomForestOptions forest;
   // method "softmax": full-batch gradient descent from zero.
   int iterations = 300;
@@ -55,6 +59,7 @@ struct CategoryClassifierOptions {
     v("half_views_per_model", half_views_per_model);
     v("include_pieces", include_pieces);
     v("seed", seed);
+    v("extra_training_databases", extra_training_databases);
     v("forest", forest);
     v("iterations", iterations);
     v("learning_rate", learning_rate);
@@ -84,6 +89,9 @@ class CategoryClassifier {
   // with include_pieces, its component and pair entries. A database of one category trains a
   // classifier that always answers it.
   static CategoryClassifier Train(const ModelDatabase& database, const CategoryClassifierOptions& options);
+  // The same on the entries of several databases (extra_training_databases is not read).
+  static CategoryClassifier Train(const std::vector<const ModelDatabase*>& databases,
+                                  const CategoryClassifierOptions& options);
   // From features and labels directly (rows of `features` are samples); what Train calls.
   static CategoryClassifier Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
                                 const std::vector<world::Category>& labels, const CategoryClassifierOptions& options);

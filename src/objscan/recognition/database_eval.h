@@ -68,6 +68,8 @@ struct DatabaseEvalResult {
   double objectness_complete_mean = 0.0;
   double objectness_partial_mean = 0.0;
   double ms_per_query = 0.0;            // describe + retrieve (+ align, objectness) per query
+  double classifier_train_s = 0.0;      // training the category classifier on the database
+  double classify_ms_per_query = 0.0;   // the classifier's features and posterior per query
   std::vector<ViewCountAccuracy> by_views;  // 1 and 3 views
   int objectness_models = 0;
   // One entry of a query's M(c), best first, with the terms its rank score is made of: what a

@@ -49,17 +49,25 @@ TEST(DatabaseEvalTest, OwnModelsAreRecognizedAndUnknownCategoriesSkipped) {
   EXPECT_EQ(r.query_models, 2);
   ASSERT_EQ(r.skipped_queries.size(), 1u);
   EXPECT_EQ(r.skipped_queries[0], SourcesOf({world::Category::kSofa})[0].name);
-  ASSERT_EQ(r.by_views.size(), 2u);
+  // Whole from 1 and from 3 views, and pieces (half of one view).
+  ASSERT_EQ(r.by_views.size(), 3u);
   EXPECT_EQ(r.by_views[0].queries, 2);
   EXPECT_EQ(r.by_views[1].queries, 2);
+  EXPECT_TRUE(r.by_views[2].piece);
+  EXPECT_EQ(r.by_views[2].queries, 2);
   EXPECT_DOUBLE_EQ(r.by_views[1].top1_category_accuracy, 1.0) << "three views of a model the database holds";
-  ASSERT_EQ(r.queries.size(), 4u);
+  EXPECT_DOUBLE_EQ(r.by_views[1].retrieval_top1_accuracy, 1.0);
+  ASSERT_EQ(r.queries.size(), 6u);
   for (const auto& q : r.queries) {
     EXPECT_TRUE(q.model == queries[0].name || q.model == queries[1].name) << q.model;
     EXPECT_TRUE(q.top5) << q.model << ": both categories are among the retrieved";
-    // M(c) is listed best first, the first names the prediction and its scores are eq. (1)'s terms.
+    // M(c) is listed best first, the first names the paper's prediction and its scores are eq. (1)'s
+    // terms; the classifier trained on the two models gives a posterior over their categories.
     ASSERT_FALSE(q.retrieved.empty()) << q.model;
-    EXPECT_EQ(q.retrieved.front().category, q.predicted);
+    EXPECT_EQ(q.retrieved.front().category, q.retrieved_category);
+    EXPECT_TRUE(q.classified);
+    EXPECT_NEAR(q.posterior[world::CategoryId(world::Category::kChair)] + q.posterior[world::CategoryId(world::Category::kBed)],
+                1.0, 1e-6);  // leaves hold floats
     for (std::size_t k = 0; k < q.retrieved.size(); ++k) {
       const auto& m = q.retrieved[k];
       if (k > 0) {

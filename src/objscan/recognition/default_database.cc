@@ -10,6 +10,10 @@
 #include "objscan/io/atomic_file.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/model_database.h"
+#include "objscan/io/category_map.h"
+#include "objscan/io/data_paths.h"
+#include "objscan/io/sweethome3d.h"
+#include "objscan/recognition/sweethome3d_sources.h"
 
 namespace objscan::recognition {
 namespace {
@@ -21,13 +25,13 @@ constexpr int kDefaultDatabaseVariants = 8;
 // brought shelves and filing cabinets of the rooms' middle heights into it (be00778, 2026-11-25).
 constexpr ProceduralSampling kDefaultDatabaseSampling = ProceduralSampling::kStyleMedoids;
 
-// FNV-1a of the builder revision and the build options as YAML: a changed builder or default (the
-// pre-segmentation's adjacency, say) names a new cache file instead of reusing a database built the
-// old way.
-std::string BuildOptionsKey(const DatabaseBuildOptions& options) {
+// FNV-1a of the builder revision and the build options as YAML (and `extra`): a changed builder or
+// default (the pre-segmentation's adjacency, say) names a new cache file instead of reusing a database
+// built the old way.
+std::string BuildOptionsKey(const DatabaseBuildOptions& options, const std::string& extra = "") {
   std::uint64_t hash = 1469598103934665603ull;
   const std::string key =
-      "builder " + std::to_string(kDatabaseBuilderRevision) + "\n" + config::ToYaml(config::Dump(options));
+      "builder " + std::to_string(kDatabaseBuilderRevision) + "\n" + config::ToYaml(config::Dump(options)) + extra;
   for (const unsigned char c : key) {
     hash = (hash ^ c) * 1099511628211ull;
   }
@@ -73,6 +77,55 @@ std::string EnsureDefaultDatabase(
       });
   return path;
 }
+
+namespace {
+
+// What the real database is made of, for its cache name: the category map's text and each catalog's
+// name and size.
+std::string RealDatabaseContentKey(const std::vector<std::string>& catalogs, const std::string& map_path) {
+  std::ifstream map(map_path, std::ios::binary);
+  std::string key((std::istreambuf_iterator<char>(map)), std::istreambuf_iterator<char>());
+  for (const std::string& c : catalogs) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(c, ec);
+    key += "\n" + std::filesystem::path(c).filename().string() + " " + std::to_string(ec ? 0 : size);
+  }
+  return key;
+}
+
+}  // namespace
+
+std::string RealDatabasePathIn(const std::string& cache_dir) {
+  const std::vector<std::string> catalogs = SweetHome3dCatalogsOf("sweethome3d");
+  const std::string map_path = io::ResolveCategoryMapPath(kSweetHome3dCategoryMap);
+  const DatabaseBuildOptions options;
+  return cache_dir + "/sweethome3d-v" + std::to_string(ModelDatabase::kFormatVersion) + "-" +
+         BuildOptionsKey(options, RealDatabaseContentKey(catalogs, map_path)) + ".db";
+}
+
+std::string EnsureRealDatabase(
+    const std::string& cache_dir, const ProgressCallback& progress,
+    const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build) {
+  const std::string path = RealDatabasePathIn(cache_dir);
+  std::error_code ec;
+  std::filesystem::create_directories(cache_dir, ec);
+  if (ec) throw InputError(cache_dir + ": cannot create the database cache folder: " + ec.message());
+  io::RemoveStaleTempFiles(cache_dir);
+  const DatabaseBuildOptions options;
+  EnsureCachedDatabase(
+      path,
+      [&] {
+        const io::CategoryMap map = io::CategoryMap::Load(io::ResolveCategoryMapPath(kSweetHome3dCategoryMap));
+        const SweetHome3dSources sh3d = SweetHome3dModelSources(SweetHome3dCatalogsOf("sweethome3d"), map);
+        return BuildDatabase(sh3d.sources, options, progress);
+      },
+      [&](const CachedDatabaseStatus& status) {
+        if (before_build) before_build(status, path);
+      });
+  return path;
+}
+
+bool UsesProceduralDatabase(const std::string& scene_spec) { return scene_spec.rfind("procedural:", 0) == 0; }
 
 std::uint64_t DatabaseMemoryLimitBytes(double max_database_memory_mb) {
   if (max_database_memory_mb > 0.0) return static_cast<std::uint64_t>(max_database_memory_mb * 1024.0 * 1024.0);

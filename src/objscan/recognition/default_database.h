@@ -26,6 +26,21 @@ std::string EnsureDefaultDatabase(
     const std::string& cache_dir, const ProgressCallback& progress = nullptr,
     const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build = nullptr);
 
+// The built-in real database: every piece of furniture of the Sweet Home 3D catalogs
+// (io::SweetHome3dCatalogDir(), Debian's sweethome3d-furniture) that config/categories/sweethome3d.yaml
+// names, the default of every scene that is not procedural. Its file in `cache_dir` is named after the
+// database format, the builder revision and options, the category map's text and the catalogs' names
+// and sizes, so a changed catalog or map builds a new one. Throws InputError naming the folder when
+// no catalog is found (install sweethome3d-furniture, or pass --db).
+std::string RealDatabasePathIn(const std::string& cache_dir);
+std::string EnsureRealDatabase(
+    const std::string& cache_dir, const ProgressCallback& progress = nullptr,
+    const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build = nullptr);
+
+// The built-in database for a scene: the procedural one for procedural:CATEGORY:SEED scenes, the real
+// one for every other scene (Gazebo worlds, mesh scenes, scans).
+bool UsesProceduralDatabase(const std::string& scene_spec);
+
 // The memory limit of a model database in bytes (ModelDatabase::Load): `max_database_memory_mb`
 // (recognition.max_database_memory_mb), or when that is 0 the memory the machine has available now
 // (MemAvailable; 0 = no limit when unknown).

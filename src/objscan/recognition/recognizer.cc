@@ -59,7 +59,14 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
 }
 
 const CategoryClassifier& Recognizer::classifier() const {
-  std::call_once(classifier_once_, [this] { classifier_ = CategoryClassifier::Train(database_, options_.classifier); });
+  std::call_once(classifier_once_, [this] {
+    std::vector<ModelDatabase> extra;
+    extra.reserve(options_.classifier.extra_training_databases.size());
+    for (const std::string& path : options_.classifier.extra_training_databases) extra.push_back(ModelDatabase::Load(path));
+    std::vector<const ModelDatabase*> all = {&database_};
+    for (const ModelDatabase& db : extra) all.push_back(&db);
+    classifier_ = CategoryClassifier::Train(all, options_.classifier);
+  });
   return classifier_;
 }
 
