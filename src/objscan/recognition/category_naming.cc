@@ -8,11 +8,14 @@ namespace objscan::recognition {
 void CategoryNamingOptions::Validate() const {
   config::RequireNonNegative("recognition.naming.classifier_weight", classifier_weight);
   config::RequireInRange("recognition.naming.absent_share", absent_share, 0.0, 1.0);
+  config::RequireInRange("recognition.naming.other_weight", other_weight, 0.0, 1.0);
 }
 
-CategoryName NameCategory(const CategoryClassifier::Probabilities& posterior,
+CategoryName NameCategory(const CategoryClassifier::Probabilities& posterior_in,
                           const std::vector<RetrievedCategory>& retrieved, const CategoryNamingOptions& options) {
   CategoryName out;
+  CategoryClassifier::Probabilities posterior = posterior_in;
+  posterior[static_cast<std::size_t>(world::CategoryId(world::Category::kOther))] *= options.other_weight;
   const bool classified = std::any_of(posterior.begin(), posterior.end(), [](double p) { return p > 0.0; });
   std::array<double, world::kNumCategories> fit{};
   fit.fill(-1.0);
@@ -39,7 +42,7 @@ CategoryName NameCategory(const CategoryClassifier::Probabilities& posterior,
       best = score;
       out.named = true;
       out.category = static_cast<world::Category>(k);
-      out.posterior = classified ? posterior[static_cast<std::size_t>(k)] : 0.0;
+      out.posterior = classified ? posterior_in[static_cast<std::size_t>(k)] : 0.0;
     }
   }
   return out;

@@ -5,7 +5,11 @@
 // whole. Both vote: with P(k) the classifier's posterior and F(k) the best rank score among M(c)'s
 // models of category k (F_absent = absent_share x the weakest retrieved score for a category M(c)
 // lacks), the name is argmax_k P(k)^classifier_weight x F(k). classifier_weight = 0 is the paper's
-// choice (the category of the best model); a large weight is the classifier's choice.
+// choice (the category of the best model); a large weight is the classifier's choice. P(other) is
+// first multiplied by other_weight: the classifier learns `other` from every prop and plant of the
+// database, a class that spans all shapes, and trained class-balanced it takes queries from every
+// furniture category (OASC dev models against the Sweet Home 3D library and the other worlds:
+// docs/results/oasc-dev-2026-11-28-category-recognizer.md).
 #include <vector>
 
 #include "objscan/common/config.h"
@@ -17,11 +21,13 @@ namespace objscan::recognition {
 struct CategoryNamingOptions {
   double classifier_weight = 1.0;
   double absent_share = 0.5;
+  double other_weight = 0.5;
 
   template <class V>
   void Visit(V& v) {
     v("classifier_weight", classifier_weight);
     v("absent_share", absent_share);
+    v("other_weight", other_weight);
   }
   void Validate() const;
 };

@@ -44,6 +44,19 @@ TEST(CategoryNamingTest, BothVoteAndACategoryMCLacksCountsAtItsShareOfTheWeakest
             Category::kBed);
 }
 
+TEST(CategoryNamingTest, OtherCountsAtItsWeight) {
+  CategoryNamingOptions options;
+  options.other_weight = 0.5;
+  // other 0.5 x 0.5 x 0.6 = 0.15 against table 0.4 x 0.6: table.
+  const auto posterior = Posterior({{Category::kOther, 0.5}, {Category::kTable, 0.4}, {Category::kDesk, 0.1}});
+  const std::vector<RetrievedCategory> votes = {{Category::kOther, 0.6}, {Category::kTable, 0.6}};
+  const auto name = NameCategory(posterior, votes, options);
+  EXPECT_EQ(name.category, Category::kTable);
+  EXPECT_DOUBLE_EQ(name.posterior, 0.4);
+  options.other_weight = 1.0;
+  EXPECT_EQ(NameCategory(posterior, votes, options).category, Category::kOther);
+}
+
 TEST(CategoryNamingTest, OneRecognizerAloneNamesAndNeitherNamesNothing) {
   const CategoryNamingOptions options;
   EXPECT_EQ(NameCategory(CategoryClassifier::Probabilities{}, {{Category::kLamp, 0.2}, {Category::kDesk, 0.3}}, options)
