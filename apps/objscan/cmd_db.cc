@@ -186,6 +186,13 @@ int RunInfo(const DbArgs& a) {
   j["entries"] = db.entries().size();
   j["categories"] = counts;
   j["model_sizes"] = sizes;
+  // Meshes stored with the models (format 5): what db eval and models.ply draw without the sources.
+  std::size_t models_with_mesh = 0, mesh_triangles = 0;
+  for (const auto& m : db.models()) {
+    models_with_mesh += m.mesh.Empty() ? 0 : 1;
+    mesh_triangles += m.mesh.NumTriangles();
+  }
+  j["stored_meshes"] = {{"models", models_with_mesh}, {"triangles", mesh_triangles}};
   j["vocabulary_words"] = db.vocabulary().num_words();
   j["keypoints_per_entry"] = db.settings().keypoints.num_keypoints;
   j["descriptor"] = db.settings().descriptor.type;
@@ -213,9 +220,13 @@ int RunEval(const DbArgs& a) {
   options.queries_per_category = a.queries_per_category;
   options.threads = a.threads;
   ApplySets(a.sets, &options);
-  const recognition::ModelDatabase db = recognition::ModelDatabase::Load(a.eval_db);
-  std::vector<std::string> skipped_folders;
   const bool procedural = a.queries.size() == 1 && a.queries.front() == "procedural";
+  // --db default: the database `objscan run` uses for the queries' scenes (procedural ones for the
+  // generator's models, the real one for every other source).
+  const std::string db_path =
+      a.eval_db != "default" ? a.eval_db : DefaultDatabasePathFor(procedural ? "procedural:" : "", true);
+  const recognition::ModelDatabase db = recognition::ModelDatabase::Load(db_path);
+  std::vector<std::string> skipped_folders;
   if (!procedural && std::find(a.queries.begin(), a.queries.end(), "procedural") != a.queries.end()) {
     throw InputError("--queries procedural (unseen generator models) cannot be combined with other queries");
   }
@@ -335,7 +346,10 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   auto* info = cmd->add_subcommand("info", "Print counts of models, components and pairs per category as JSON");
   info->add_option("db", args->info_db, "database file")->required();
   auto* eval = cmd->add_subcommand("eval", "Evaluate retrieval accuracy and objectness on unseen models");
-  eval->add_option("--db", args->eval_db, "database file")->required();
+  eval->add_option("--db", args->eval_db,
+                   "database file, or 'default': the built-in one `objscan run` uses for the queries' scenes "
+                   "(procedural for --queries procedural, the real Sweet Home 3D library otherwise)")
+      ->required();
   eval->add_option("--queries", args->queries,
                    "query models, as --models of build: 'procedural' (unseen generator models), a DIR of "
                    "<category>/<name>.<ext>, scene SPECs (.world, ...: their categorised objects), 'sweethome3d' "
