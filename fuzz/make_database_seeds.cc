@@ -51,6 +51,8 @@ ModelDatabase TinyDatabase(bool two_models) {
   chair.source = "procedural/chair/1";
   chair.full_entry = 0;
   chair.support_heights_m = {0.f};
+  // Its stored mesh (format 5): the box of its points.
+  chair.mesh = objscan::geometry::MakeBox(Eigen::Vector3d(-0.25, -0.25, 0.0), Eigen::Vector3d(0.25, 0.25, 0.9));
   db.mutable_models().push_back(chair);
   DatabaseEntry full = Entry(EntryKind::kFullModel, Category::kChair, "chair_a", 0, 0);
   BoxPoints(0.5f, 0.5f, 0.9f, &full.points, &full.normals);
@@ -66,7 +68,7 @@ ModelDatabase TinyDatabase(bool two_models) {
     lamp.name = "lamp_b";
     lamp.category = Category::kLamp;
     lamp.source = "sweethome3d:/usr/share/sweethome3d/furniture/Test.sh3f#Test#lamp";
-    lamp.full_entry = 3;  // support heights unknown
+    lamp.full_entry = 3;  // support heights unknown, no stored mesh
     lamp.creator = "Jos\xc3\xa9";  // credits (format 4)
     lamp.license = "CC-BY 3.0";
     db.mutable_models().push_back(lamp);

@@ -59,7 +59,10 @@ TEST_F(SweetHome3dCliTest, BuildsFromACatalogAndInfoListsTheCredits) {
   const Result info = RunObjscan("db info " + db);
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const nlohmann::json j = nlohmann::json::parse(info.out);
-  EXPECT_EQ(j["format_version"], 4);
+  EXPECT_EQ(j["format_version"], 5);
+  // Every piece's mesh is stored with it (format 5): the database needs no catalog to give it back.
+  EXPECT_EQ(j["stored_meshes"]["models"], j["models"]) << info.out;
+  EXPECT_GT(j["stored_meshes"]["triangles"].get<int>(), 0) << info.out;
   const nlohmann::json& credits = j["credits"];
   ASSERT_EQ(credits.size(), 3u) << credits.dump();
   EXPECT_EQ(credits[0]["catalog"], "Test-Catalog.sh3f");

@@ -303,6 +303,40 @@ void WriteRunTopView(const std::string& path, const RunOutputInputs& in) {
   canvas.SavePng(path);
 }
 
+io::PlyData PlacedModelsPly(const scanning::RunRecord& record, const recognition::ModelDatabase& database,
+                            const std::function<void(const std::string& message)>& warn) {
+  io::PlyData models;
+  std::vector<std::int32_t> model_object, model_category;
+  std::set<int> models_without_mesh;
+  for (const auto& o : record.objects) {
+    if (!o.complete || o.model_index < 0) continue;
+    const auto& model = database.models()[o.model_index];
+    geometry::TriangleMesh mesh;
+    try {
+      // The mesh stored in the database, else the one of the model's source.
+      mesh = recognition::LoadModelSourceMesh(model);
+    } catch (const InputError& e) {
+      // No mesh anywhere (a database built from scans whose source is gone): the database scan
+      // points stand in, and the caller is told once per model.
+      for (const auto& p : database.entries()[model.full_entry].points) mesh.vertices.push_back(p);
+      if (models_without_mesh.insert(o.model_index).second && warn) {
+        warn(std::string(e.what()) + " (models.ply has its scan points instead)");
+      }
+    }
+    const int offset = static_cast<int>(models.points.size());
+    for (const auto& v : mesh.vertices) {
+      models.points.push_back((o.T_world_model * v.cast<double>()).cast<float>());
+      model_object.push_back(o.id);
+      model_category.push_back(o.category ? world::CategoryId(*o.category) : -1);
+    }
+    for (const auto& t : mesh.triangles) models.triangles.push_back(t + Eigen::Vector3i::Constant(offset));
+  }
+  models.int_properties.emplace_back("object_id", model_object);
+  models.int_properties.emplace_back("category_id", model_category);
+  io::AddCategoryLabels(model_category, &model_object, /*colour_by_category=*/true, &models);
+  return models;
+}
+
 void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -335,29 +369,7 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   io::WritePly((dir / "scene.ply").string(), scene);
 
   // models.ply: the database models that replaced complete objects, placed.
-  io::PlyData models;
-  std::vector<std::int32_t> model_object, model_category;
-  for (const auto& o : in.record->objects) {
-    if (!o.complete || o.model_index < 0) continue;
-    const auto& model = in.database->models()[o.model_index];
-    geometry::TriangleMesh mesh;
-    try {
-      mesh = recognition::LoadModelSourceMesh(model);
-    } catch (const InputError&) {
-      // The source mesh is gone: fall back to the database scan points.
-      for (const auto& p : in.database->entries()[model.full_entry].points) mesh.vertices.push_back(p);
-    }
-    const int offset = static_cast<int>(models.points.size());
-    for (const auto& v : mesh.vertices) {
-      models.points.push_back((o.T_world_model * v.cast<double>()).cast<float>());
-      model_object.push_back(o.id);
-      model_category.push_back(o.category ? world::CategoryId(*o.category) : -1);
-    }
-    for (const auto& t : mesh.triangles) models.triangles.push_back(t + Eigen::Vector3i::Constant(offset));
-  }
-  models.int_properties.emplace_back("object_id", model_object);
-  models.int_properties.emplace_back("category_id", model_category);
-  io::AddCategoryLabels(model_category, &model_object, /*colour_by_category=*/true, &models);
+  const io::PlyData models = PlacedModelsPly(*in.record, *in.database, in.warn);
   io::WritePly((dir / "models.ply").string(), models);
 
   // coverage.ply (ground truth known): every voxel of V_S, coloured green when it counts for the

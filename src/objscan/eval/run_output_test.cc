@@ -115,5 +115,67 @@ TEST(TrajectoryTumTest, OneLinePerViewWithTheCameraPose) {
   }
 }
 
+// models.ply draws each complete object's model from the mesh stored in the database (no file needed),
+// placed; a model with no mesh anywhere (built from scans, source gone) is drawn by its scan points
+// and named in one warning, once however many objects use it.
+TEST(PlacedModelsPlyTest, StoredMeshesArePlacedAndAModelWithoutMeshIsNamedOnce) {
+  recognition::ModelDatabase db;
+  recognition::DatabaseModel stored;
+  stored.name = "chair/stored";
+  stored.category = world::Category::kChair;
+  stored.source = "/nowhere/house.world#chair_0";  // loadable from nowhere: the stored mesh is used
+  stored.full_entry = 0;
+  stored.mesh = geometry::MakeBox(Eigen::Vector3d(-0.2, -0.2, 0.0), Eigen::Vector3d(0.2, 0.2, 0.9));
+  recognition::DatabaseModel gone = stored;
+  gone.name = "table/gone";
+  gone.category = world::Category::kTable;
+  gone.source = "/nowhere/house.world#table_0";
+  gone.full_entry = 1;
+  gone.mesh = geometry::TriangleMesh();
+  db.mutable_models() = {stored, gone};
+  recognition::DatabaseEntry chair_entry, table_entry;
+  chair_entry.model_index = 0;
+  chair_entry.points = {{0.f, 0.f, 0.f}};
+  table_entry.model_index = 1;
+  table_entry.kind = recognition::EntryKind::kFullModel;
+  table_entry.points = {{0.f, 0.f, 0.7f}, {0.5f, 0.f, 0.7f}, {0.f, 0.3f, 0.7f}};
+  db.mutable_entries() = {chair_entry, table_entry};
+
+  scanning::RunRecord record;
+  const auto object = [](int id, int model, bool complete, const Eigen::Vector3d& at) {
+    scanning::ObjectRecord o;
+    o.id = id;
+    o.model_index = model;
+    o.complete = complete;
+    o.category = model == 0 ? world::Category::kChair : world::Category::kTable;
+    o.T_world_model = geometry::Pose3(Eigen::Translation3d(at));
+    return o;
+  };
+  record.objects = {object(3, 0, true, {1.0, 2.0, 0.0}), object(4, 1, true, {-1.0, 0.0, 0.0}),
+                    object(5, 1, true, {4.0, 0.0, 0.0}), object(6, 0, false, {9.0, 9.0, 0.0})};
+  std::vector<std::string> warnings;
+  const io::PlyData ply = PlacedModelsPly(record, db, [&](const std::string& m) { warnings.push_back(m); });
+
+  ASSERT_EQ(ply.points.size(), 8u + 3u + 3u);  // the box, then the table's points twice; not object 6
+  ASSERT_EQ(ply.triangles.size(), 12u);         // the box's, from the database
+  geometry::Aabb3 box;
+  for (int k = 0; k < 8; ++k) box.Extend(ply.points[k].cast<double>());
+  EXPECT_NEAR((box.min_m - Eigen::Vector3d(0.8, 1.8, 0.0)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((box.max_m - Eigen::Vector3d(1.2, 2.2, 0.9)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((ply.points[8] - Eigen::Vector3f(-1.f, 0.f, 0.7f)).norm(), 0.f, 1e-6f);
+  EXPECT_NEAR((ply.points[11] - Eigen::Vector3f(4.f, 0.f, 0.7f)).norm(), 0.f, 1e-6f);
+  ASSERT_FALSE(ply.int_properties.empty());
+  EXPECT_EQ(ply.int_properties[0].first, "object_id");
+  EXPECT_EQ(ply.int_properties[0].second.front(), 3);
+  EXPECT_EQ(ply.int_properties[0].second.back(), 5);
+
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("model table/gone"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("house.world#table_0"), std::string::npos) << warnings[0];
+  EXPECT_EQ(warnings[0].find('\n'), std::string::npos) << warnings[0];
+  // No callback: the same file, nothing told.
+  EXPECT_EQ(PlacedModelsPly(record, db, nullptr).points.size(), ply.points.size());
+}
+
 }  // namespace
 }  // namespace objscan::eval

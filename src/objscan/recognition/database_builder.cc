@@ -11,6 +11,7 @@
 
 #include "objscan/common/error.h"
 #include "objscan/common/rng.h"
+#include "objscan/geometry/mesh_decimation.h"
 #include "objscan/io/mesh_io.h"
 #include "objscan/io/sweethome3d.h"
 #include "objscan/recognition/keypoints.h"
@@ -23,6 +24,9 @@ void DatabaseBuildOptions::Validate() const {
   scan.Validate();
   config::RequirePositive("recognition.database.store_voxel_m", store_voxel_m);
   config::Require(min_entry_points >= 3, "recognition.database.min_entry_points", "must be at least 3");
+  config::Require(stored_mesh_max_triangles >= 1, "recognition.database.stored_mesh_max_triangles",
+                  "must be at least 1");
+  config::RequirePositive("recognition.database.stored_mesh_min_cell_m", stored_mesh_min_cell_m);
   keypoints.Validate();
   descriptor.Validate();
   vocabulary.Validate();
@@ -418,7 +422,10 @@ std::vector<ModelSource> ProceduralModelSources(int variants, std::uint64_t firs
   return sources;
 }
 
-geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model) {
+namespace {
+
+// The mesh of a model's source string, normalised; throws InputError when it cannot be loaded.
+geometry::TriangleMesh LoadMeshOfSource(const DatabaseModel& model) {
   const std::string prefix = "procedural/";
   geometry::TriangleMesh mesh;
   if (model.source.rfind(prefix, 0) == 0) {
@@ -441,6 +448,18 @@ geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model) {
   return NormalizeModel(mesh, TypicalHeight(model.category));
 }
 
+}  // namespace
+
+geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model) {
+  if (!model.mesh.Empty()) return model.mesh;
+  try {
+    return LoadMeshOfSource(model);
+  } catch (const InputError& e) {
+    throw InputError("model " + model.name + ": no mesh in the database and its source cannot be loaded: " +
+                     e.what());
+  }
+}
+
 namespace {
 
 struct ModelInfo {
@@ -450,13 +469,15 @@ struct ModelInfo {
   std::vector<float> support_heights_m;
   std::string creator;
   std::string license;
+  geometry::TriangleMesh mesh;  // normalised and decimated; empty when built from scans
 };
 
 // Vocabulary, histograms and index from described models.
-ModelDatabase Assemble(std::vector<PendingModel>* pending_models, const std::vector<ModelInfo>& info,
+ModelDatabase Assemble(std::vector<PendingModel>* pending_models, std::vector<ModelInfo>* infos,
                        const DatabaseBuildOptions& options, const DescriptorExtractor& descriptor,
                        const ProgressCallback& progress) {
   std::vector<PendingModel>& pending = *pending_models;
+  std::vector<ModelInfo>& info = *infos;
   const int n_models = static_cast<int>(pending.size());
 
   ModelDatabase db;
@@ -499,6 +520,7 @@ ModelDatabase Assemble(std::vector<PendingModel>* pending_models, const std::vec
     model.support_heights_m = info[m].support_heights_m;
     model.creator = info[m].creator;
     model.license = info[m].license;
+    model.mesh = std::move(info[m].mesh);
     const int model_index = static_cast<int>(db.models().size());
     for (auto& pe : pending[m].entries) {
       descriptors.resize(pe.descriptors.size());
@@ -536,8 +558,12 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   int done = 0;
   sim::ParallelForBlocks(n_models, workers, [&](int m) {
     const ModelSource& source = sources[m];
-    info[m] = {source.category, source.name, source.source, source.support_heights_m, source.creator, source.license};
+    info[m] = {source.category, source.name, source.source, source.support_heights_m, source.creator, source.license, {}};
     const geometry::TriangleMesh mesh = NormalizeModel(source.load_mesh(), TypicalHeight(source.category));
+    // The mesh as scanned, kept in the database (bounded in size) so the model's mesh comes back
+    // without its source files.
+    info[m].mesh =
+        geometry::DecimateToTriangleBudget(mesh, options.stored_mesh_max_triangles, options.stored_mesh_min_cell_m).mesh;
     if (!mesh.Empty()) {
       Rng noise_rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(m)));
       const ModelScan scan = ScanModel(mesh, RingViews(geometry::Bounds(mesh), scan_options), scan_options,
@@ -548,7 +574,7 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
     ++done;
     ReportProgress(progress, 0.85 * done / n_models, source.name);
   });
-  return Assemble(&pending, info, options, *descriptor, progress);
+  return Assemble(&pending, &info, options, *descriptor, progress);
 }
 
 ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, const DatabaseBuildOptions& options,
@@ -559,10 +585,10 @@ ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, co
   std::vector<PendingModel> pending(n_models);
   std::vector<ModelInfo> info(n_models);
   sim::ParallelForBlocks(n_models, options.threads, [&](int m) {
-    info[m] = {models[m].category, models[m].name, models[m].source, models[m].support_heights_m, {}, {}};
+    info[m] = {models[m].category, models[m].name, models[m].source, models[m].support_heights_m, {}, {}, {}};
     pending[m] = DescribeScan(models[m].scan, models[m].category, models[m].name, m, options, *descriptor);
   });
-  return Assemble(&pending, info, options, *descriptor, progress);
+  return Assemble(&pending, &info, options, *descriptor, progress);
 }
 
 }  // namespace objscan::recognition

@@ -20,7 +20,8 @@ namespace objscan::recognition {
 // Bump whenever a change to the builder changes the databases it builds (the cached default database
 // of objscan run is named after it and the build options, so a stale cache is never reused).
 // 2: models carry support heights (procedural ones from rooms the database generates).
-constexpr int kDatabaseBuilderRevision = 2;
+// 3: models carry their decimated mesh (DatabaseModel::mesh).
+constexpr int kDatabaseBuilderRevision = 3;
 
 struct DatabaseBuildOptions {
   VirtualScanOptions scan;
@@ -29,6 +30,11 @@ struct DatabaseBuildOptions {
   bool scan_noise = false;
   double store_voxel_m = 0.03;   // stored entry points (for consumers: NBV, model replacement)
   int min_entry_points = 40;     // components with fewer surface elements are not entries
+  // Each model's mesh is stored in the database (DatabaseModel::mesh) with at most this many
+  // triangles: kept as it is when it has that few, else clustered on the finest grid of
+  // stored_mesh_min_cell_m * 1.25^k that fits (geometry::DecimateToTriangleBudget).
+  int stored_mesh_max_triangles = 3000;
+  double stored_mesh_min_cell_m = 0.01;
   bool include_components = true;
   bool include_pairs = true;
   KeypointOptions keypoints;
@@ -45,6 +51,8 @@ struct DatabaseBuildOptions {
     v("scan_noise", scan_noise);
     v("store_voxel_m", store_voxel_m);
     v("min_entry_points", min_entry_points);
+    v("stored_mesh_max_triangles", stored_mesh_max_triangles);
+    v("stored_mesh_min_cell_m", stored_mesh_min_cell_m);
     v("include_components", include_components);
     v("include_pairs", include_pairs);
     v("keypoints", keypoints);
@@ -122,8 +130,11 @@ std::vector<std::vector<float>> ProceduralSupportHeights();
 // index on ties), so the same rows give the same choice.
 std::vector<int> GreedyMedoids(const std::vector<std::vector<double>>& features, int count);
 
-// The mesh of a database model from its `source` string (procedural or a file), normalised the way
-// the builder does. Throws InputError when the source cannot be loaded.
+// The mesh of a database model in the database frame: the one stored in the database
+// (DatabaseModel::mesh, decimated) when there is one, else loaded from its `source` string
+// (procedural, a Sweet Home 3D piece or a mesh file) and normalised the way the builder does. Throws
+// InputError naming the model and its source when it has no stored mesh and the source cannot be
+// loaded (a world's object, "<world>#<object>", or a file that is gone).
 geometry::TriangleMesh LoadModelSourceMesh(const DatabaseModel& model);
 
 // Builds (and finalizes) the database. Throws InputError when a model cannot be loaded or no entry

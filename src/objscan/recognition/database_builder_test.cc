@@ -10,8 +10,10 @@
 #include <set>
 
 #include "objscan/common/error.h"
+#include "objscan/geometry/mesh_decimation.h"
 #include "objscan/io/suncg_categories.h"
 #include "objscan/recognition/recognizer.h"
+#include "objscan/recognition/test_database.h"
 #include "objscan/world/procedural/procedural.h"
 #include "shared_data.h"
 
@@ -94,6 +96,82 @@ TEST(DatabaseBuilderTest, ProceduralModelsGiveFullModelsComponentsAndPairs) {
   const auto similar = recognizer.Retrieve(recognizer.Describe(view.surface), RetrievalScope::kFullModels);
   ASSERT_FALSE(similar.empty());
   EXPECT_EQ(db.entries()[similar[0].entry].category, db.models()[0].category);
+}
+
+// Issue 48: every model's mesh comes back from the database alone. A world's object (source
+// "<world>#<object>", which nothing can load), a mesh file deleted after the build and a generated
+// model: each model's stored mesh is its normalised mesh within the triangle bound, its bounds those
+// of the mesh the builder scanned within the decimation's grid.
+TEST(DatabaseBuilderTest, EveryModelKeepsItsMeshWithoutItsSourceFiles) {
+  TempDir dir("objscan_db_meshes");
+  WriteCubeObj(dir.path() / "cabinet" / "cube.obj", 0.6);
+  std::vector<ModelSource> sources = ModelSourcesFromFolder(dir.path().string(), nullptr);
+  ASSERT_EQ(sources.size(), 1u);
+  ModelSource ball;  // a fine sphere of ~40k triangles, as a world's object
+  ball.category = world::Category::kLamp;
+  ball.name = "lamp/ball";
+  ball.source = (dir.path() / "gone.world").string() + "#ball_0";
+  ball.load_mesh = [] {
+    return geometry::Transformed(geometry::MakeSphere(0.25, 200), Eigen::Affine3d(Eigen::Translation3d(3.0, -1.0, 0.9)));
+  };
+  sources.push_back(ball);
+  for (const auto& s : ProceduralModelSources(1)) {
+    if (s.category == world::Category::kChair) sources.push_back(s);
+  }
+  ASSERT_EQ(sources.size(), 3u);
+  DatabaseBuildOptions options = FastOptions();
+  options.stored_mesh_max_triangles = 2000;
+  const ModelDatabase built = BuildDatabase(sources, options);
+  ASSERT_EQ(built.models().size(), 3u);
+  const fs::path db_path = dir.path() / "meshes.db";
+  built.Save(db_path.string());
+  std::vector<geometry::TriangleMesh> scanned_meshes;  // what the builder scanned
+  for (const auto& s : sources) scanned_meshes.push_back(NormalizeModel(s.load_mesh(), TypicalHeight(s.category)));
+  fs::remove_all(dir.path() / "cabinet");  // the folder model's file is gone
+  const ModelDatabase db = ModelDatabase::Load(db_path.string());
+  ASSERT_EQ(db.models().size(), 3u);
+  for (std::size_t m = 0; m < sources.size(); ++m) {
+    const DatabaseModel& model = db.models()[m];
+    SCOPED_TRACE(model.name);
+    EXPECT_EQ(model.source, sources[m].source);  // kept for provenance
+    const geometry::TriangleMesh& scanned = scanned_meshes[m];
+    const geometry::BoundedMesh expected = geometry::DecimateToTriangleBudget(scanned, 2000, options.stored_mesh_min_cell_m);
+    const geometry::TriangleMesh mesh = LoadModelSourceMesh(model);
+    ASSERT_FALSE(mesh.Empty());
+    EXPECT_LE(mesh.NumTriangles(), 2000u);
+    EXPECT_EQ(mesh.vertices, expected.mesh.vertices);
+    EXPECT_EQ(mesh.triangles, expected.mesh.triangles);
+    // Within one grid cell of the scanned mesh's bounds (exact when it was small enough to keep).
+    EXPECT_LE(expected.cell_m, 0.05);
+    const double tolerance_m = std::max(expected.cell_m, 1e-6);
+    const geometry::Aabb3 got = geometry::Bounds(mesh), want = geometry::Bounds(scanned);
+    EXPECT_LT((got.min_m - want.min_m).cwiseAbs().maxCoeff(), tolerance_m);
+    EXPECT_LT((got.max_m - want.max_m).cwiseAbs().maxCoeff(), tolerance_m);
+  }
+  EXPECT_EQ(db.models()[0].mesh.NumTriangles(), 12u);  // the cube as it was
+  EXPECT_GT(db.models()[1].mesh.NumTriangles(), 1000u) << "the sphere on the finest grid that fits";
+}
+
+// A database built from scans has no meshes: LoadModelSourceMesh falls back to the source string and,
+// when that cannot be loaded, says which model has no mesh.
+TEST(DatabaseBuilderTest, ModelWithoutStoredMeshNorLoadableSourceIsNamed) {
+  const ModelDatabase db = BuildDatabaseFromScans(testing::ShapeModels(0.02), testing::SmallDatabaseOptions());
+  ASSERT_FALSE(db.models().empty());
+  const DatabaseModel& model = db.models()[0];
+  EXPECT_TRUE(model.mesh.Empty());
+  try {
+    LoadModelSourceMesh(model);
+    ADD_FAILURE() << "loaded " << model.source;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("model " + model.name + ": no mesh in the database"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find(model.source), std::string::npos) << e.what();
+  }
+  // With a procedural source, the generator makes it again.
+  DatabaseModel generated = model;
+  generated.category = ProceduralModelSources(1).front().category;
+  generated.source = ProceduralModelSources(1).front().source;
+  EXPECT_FALSE(LoadModelSourceMesh(generated).Empty());
 }
 
 // Where the generator stands its furniture: chairs, beds and doors on the floor, monitors on desks,

@@ -174,6 +174,10 @@ void ModelDatabase::Save(const std::string& path) const {
     w.Array(m.support_heights_m.data(), m.support_heights_m.size());
     w.String(m.creator);
     w.String(m.license);
+    w.Points(m.mesh.vertices);
+    w.Pod<std::uint32_t>(static_cast<std::uint32_t>(m.mesh.triangles.size()));
+    static_assert(sizeof(Eigen::Vector3i) == 3 * sizeof(std::int32_t), "Vector3i must be packed");
+    w.Array(reinterpret_cast<const std::int32_t*>(m.mesh.triangles.data()), 3 * m.mesh.triangles.size());
   }
   // Entries.
   w.Pod<std::uint32_t>(static_cast<std::uint32_t>(entries_.size()));
@@ -319,7 +323,9 @@ ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, 
   }
   const std::uint32_t num_bins = db.NumBins();
 
-  const std::uint32_t n_models = r.Count(4 + 4 + 4 + 4 + 4 + 4 + 4, "models");
+  // At least: name, category, source, full entry, support heights, creator, licence, mesh vertices
+  // and triangles (a count each).
+  const std::uint32_t n_models = r.Count(9 * 4, "models");
   db.models_.resize(n_models);
   for (auto& m : db.models_) {
     m.name = r.String("model name");
@@ -333,6 +339,18 @@ ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, 
     }
     m.creator = r.String("model creator");
     m.license = r.String("model license");
+    m.mesh.vertices = r.Points("model mesh vertices");
+    for (const auto& v : m.mesh.vertices) {
+      if (!v.allFinite()) r.Fail("model mesh vertices");
+    }
+    const std::uint32_t n_triangles = r.Count(12, "model mesh triangles");
+    m.mesh.triangles.resize(n_triangles);
+    r.Array(reinterpret_cast<std::int32_t*>(m.mesh.triangles.data()), 3 * static_cast<std::size_t>(n_triangles),
+            "model mesh triangles");
+    const auto n_vertices = static_cast<std::int32_t>(m.mesh.vertices.size());
+    for (const auto& t : m.mesh.triangles) {
+      if ((t.array() < 0).any() || (t.array() >= n_vertices).any()) r.Fail("model mesh triangle index");
+    }
   }
   const std::uint32_t n_entries = r.Count(1 + 4 + 4 + 4 + 4 + 4 + 4, "entries");
   db.entries_.resize(n_entries);

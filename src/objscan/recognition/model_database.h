@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "objscan/geometry/aabb.h"
+#include "objscan/geometry/mesh.h"
 #include "objscan/recognition/alignment.h"
 #include "objscan/recognition/descriptor.h"
 #include "objscan/recognition/keypoints.h"
@@ -43,7 +44,10 @@ struct DatabaseEntry {
 struct DatabaseModel {
   std::string name;
   world::Category category = world::Category::kOther;
-  std::string source;            // file path or "procedural/<category>/<seed>"
+  // Where the model came from (provenance): a mesh file path, "procedural/<category>/<seed>",
+  // "sweethome3d:<catalog>#<piece id>" or "<world file>#<object>" (a world's object, loadable from
+  // nowhere but `mesh`).
+  std::string source;
   std::int32_t full_entry = -1;  // index of its full-model entry
   // Where models like it stand in the scenes the database comes from: the height of the bottom above
   // the floor, one per placement seen (a monitor on desks, a lamp on the floor and on night stands);
@@ -53,6 +57,12 @@ struct DatabaseModel {
   // licence); empty when not known (procedural models, plain mesh folders).
   std::string creator;
   std::string license;
+  // The mesh the builder scanned, in the database frame (normalised: Z up, standing on z = 0, centred
+  // in XY), decimated to at most DatabaseBuildOptions::stored_mesh_max_triangles triangles
+  // (geometry/mesh_decimation.h), so a database gives back every model's mesh without its source
+  // files. Empty when built from scans (BuildDatabaseFromScans): LoadModelSourceMesh then loads
+  // `source`.
+  geometry::TriangleMesh mesh;
 };
 
 // How the entries were described; a query is described with the same settings.
@@ -68,7 +78,9 @@ class ModelDatabase {
   // 2: spatial BoW with absolute-height, normal and size words (settings layout changed).
   // 3: each model's support heights.
   // 4: each model's creator and licence.
-  static constexpr std::uint32_t kFormatVersion = 4;
+  // 5: each model's (decimated) mesh: u32 vertex count, float x y z per vertex, u32 triangle count,
+  //    i32 a b c per triangle (indices checked on load); counts of 0 when none is stored.
+  static constexpr std::uint32_t kFormatVersion = 5;
 
   ModelDatabase() = default;
   ModelDatabase(ModelDatabase&&) = default;
