@@ -106,15 +106,32 @@ TriangleMesh ClusterVertices(const TriangleMesh& mesh, double cell_m) {
 BoundedMesh DecimateToTriangleBudget(const TriangleMesh& mesh, int max_triangles, double min_cell_m) {
   BoundedMesh result;
   result.mesh = Compacted(mesh);
-  if (static_cast<long long>(result.mesh.triangles.size()) <= std::max(0, max_triangles)) return result;
+  const std::size_t budget = static_cast<std::size_t>(std::max(0, max_triangles));
+  if (result.mesh.triangles.size() <= budget) return result;
   const TriangleMesh source = std::move(result.mesh);
+  // A mesh thin in two directions (a pencil, a pole) collapses to a line on a grid coarser than its
+  // width: the grid starts finer than a quarter of the second-smallest extent.
+  Eigen::Vector3d extent = Bounds(source).Size();
+  std::sort(extent.data(), extent.data() + 3);
   double cell_m = std::max(min_cell_m, 1e-6);
+  if (extent[1] > 0.0) cell_m = std::max(std::min(cell_m, extent[1] / 4.0), 1e-6);
   for (;;) {
     result.mesh = ClusterVertices(source, cell_m);
     result.cell_m = cell_m;
-    if (static_cast<long long>(result.mesh.triangles.size()) <= std::max(0, max_triangles)) return result;
+    if (result.mesh.triangles.size() <= budget) break;
     cell_m *= 1.25;
   }
+  if (result.mesh.Empty() && budget > 0) {
+    // Collapsed from above the budget to nothing in one step: every k-th triangle of the mesh instead
+    // (a coarse but bounded stand-in that keeps the shape's extent roughly).
+    const std::size_t stride = (source.triangles.size() + budget - 1) / budget;
+    TriangleMesh sampled;
+    sampled.vertices = source.vertices;
+    for (std::size_t t = 0; t < source.triangles.size(); t += stride) sampled.triangles.push_back(source.triangles[t]);
+    result.mesh = Compacted(sampled);
+    result.cell_m = 0.0;
+  }
+  return result;
 }
 
 }  // namespace objscan::geometry

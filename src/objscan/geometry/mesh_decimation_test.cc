@@ -36,6 +36,21 @@ TEST(MeshDecimationTest, FineSphereFitsTheBudgetAndKeepsItsBoundsWithinOneCell) 
   EXPECT_EQ(again.mesh.triangles, decimated.mesh.triangles);
 }
 
+// A pencil (7 mm wide, 18 cm long, finely tessellated) on a 1 cm grid would collapse to a line (no
+// triangle left; a Sweet Home 3D pencil did): the grid starts finer than its width.
+TEST(MeshDecimationTest, ThinPencilKeepsItsShape) {
+  const TriangleMesh pencil = MakeCylinder(0.0035, 0.18, 1000);
+  ASSERT_GT(pencil.NumTriangles(), 3000u);
+  EXPECT_TRUE(ClusterVertices(pencil, 0.01).Empty()) << "the case this guards against";
+  const BoundedMesh decimated = DecimateToTriangleBudget(pencil, 3000, 0.01);
+  EXPECT_LE(decimated.mesh.NumTriangles(), 3000u);
+  EXPECT_GT(decimated.mesh.NumTriangles(), 24u) << "still a tube, if of fewer sides";
+  EXPECT_GT(decimated.cell_m, 0.0);
+  EXPECT_LE(decimated.cell_m, 0.0035);
+  ExpectBoundsShrunkByLessThan(Bounds(decimated.mesh), Bounds(pencil), decimated.cell_m);
+  EXPECT_NEAR(SurfaceArea(decimated.mesh), SurfaceArea(pencil), 0.2 * SurfaceArea(pencil));
+}
+
 TEST(MeshDecimationTest, SmallMeshIsKeptAsItIs) {
   TriangleMesh box = MakeBox(Eigen::Vector3d(1.0, 0.5, 0.8));
   box.vertices.push_back(Eigen::Vector3f(9.f, 9.f, 9.f));  // unreferenced: dropped
