@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 
 #include <Eigen/Eigenvalues>
 
@@ -13,6 +15,8 @@ namespace objscan::recognition {
 void CategoryClassifierOptions::Validate() const {
   config::Require(method == "forest" || method == "softmax", "recognition.classifier.method",
                   "must be 'forest' or 'softmax', not '" + method + "'");
+  config::Require(balance == "samples" || balance == "models", "recognition.classifier.balance",
+                  "must be 'samples' or 'models', not '" + balance + "'");
   config::Require(half_views_per_model >= 0, "recognition.classifier.half_views_per_model", "must be >= 0");
   forest.Validate();
   config::Require(views_per_model >= 0, "recognition.classifier.views_per_model", "must be >= 0");
@@ -178,7 +182,7 @@ static_assert(kNumRelativeShapeFeatures == 26 && kNumShapeFeatures == 26 + 2 + 9
 
 CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
                                            const std::vector<world::Category>& labels,
-                                           const CategoryClassifierOptions& options) {
+                                           const CategoryClassifierOptions& options, const std::vector<int>& groups) {
   options.Validate();
   CategoryClassifier c;
   if (features.empty() || features.size() != labels.size()) return c;
@@ -210,10 +214,22 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
   // One-hot targets, each class weighing the same in all.
   Eigen::MatrixXd y = Eigen::MatrixXd::Zero(n, classes);
   Eigen::VectorXd w(n);
+  const bool by_models = options.balance == "models" && groups.size() == features.size();
+  std::map<int, int> group_size;                    // samples per group
+  std::array<std::set<int>, world::kNumCategories> groups_of;  // groups per class
+  if (by_models) {
+    for (int i = 0; i < n; ++i) {
+      ++group_size[groups[static_cast<std::size_t>(i)]];
+      groups_of[static_cast<std::size_t>(world::CategoryId(labels[static_cast<std::size_t>(i)]))].insert(
+          groups[static_cast<std::size_t>(i)]);
+    }
+  }
   for (int i = 0; i < n; ++i) {
     const int id = world::CategoryId(labels[static_cast<std::size_t>(i)]);
     y(i, class_of[static_cast<std::size_t>(id)]) = 1.0;
-    w(i) = 1.0 / (static_cast<double>(classes) * count[static_cast<std::size_t>(id)]);
+    w(i) = by_models ? 1.0 / (static_cast<double>(classes) * groups_of[static_cast<std::size_t>(id)].size() *
+                              group_size[groups[static_cast<std::size_t>(i)]])
+                     : 1.0 / (static_cast<double>(classes) * count[static_cast<std::size_t>(id)]);
   }
   if (classes == 1) return c;
   if (options.method == "forest") {
@@ -256,6 +272,8 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
   // A height above the floor the entry's model stands at in the database's scenes (0 when unknown),
   // drawn per sample: the floor lies that far below the model frame's z = 0.
   const ModelDatabase* database = nullptr;  // the one whose entries are being read
+  std::vector<int> groups;                  // the model of each sample, unique over the databases
+  int group_base = 0;
   auto floor_z_of = [&](const DatabaseEntry& e) {
     if (e.model_index < 0 || e.model_index >= static_cast<std::int32_t>(database->models().size())) return 0.0;
     const std::vector<float>& heights = database->models()[static_cast<std::size_t>(e.model_index)].support_heights_m;
@@ -267,9 +285,11 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
     if (points.size() < 8) return;
     features.push_back(ShapeFeatures(points, normals, floor_z_of(e)));
     labels.push_back(e.category);
+    groups.push_back(group_base + e.model_index);
   };
-  for (const ModelDatabase* db : databases) {
-    database = db;
+  for (std::size_t d = 0; d < databases.size(); ++d) {
+    database = databases[d];
+    if (d > 0) group_base += static_cast<int>(databases[d - 1]->models().size()) + 1;
     for (const DatabaseEntry& e : database->entries()) {
       if (e.keypoints.size() != e.keypoint_normals.size()) continue;
       if (e.kind != EntryKind::kFullModel) {
@@ -318,7 +338,7 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
       }
     }
   }
-  return Fit(features, labels, options);
+  return Fit(features, labels, options, groups);
 }
 
 CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<float, kNumShapeFeatures>& features) const {

@@ -43,6 +43,9 @@ struct CategoryClassifierOptions {
   // furniture library beside a database of a benchmark's models): the classifier learns categories
   // from many shapes while retrieval keeps its database. Loaded when the classifier is trained.
   std::vector<std::string> extra_training_databases;
+  // How samples weigh: "samples" (every sample the same within its class) or "models" (every model
+  // the same within its class, however many pieces and views it gave). Classes weigh the same.
+  std::string balance = "samples";
   RandomForestOptions forest;
   // method "softmax": full-batch gradient descent from zero.
   int iterations = 300;
@@ -60,6 +63,7 @@ struct CategoryClassifierOptions {
     v("include_pieces", include_pieces);
     v("seed", seed);
     v("extra_training_databases", extra_training_databases);
+    v("balance", balance);
     v("forest", forest);
     v("iterations", iterations);
     v("learning_rate", learning_rate);
@@ -93,8 +97,11 @@ class CategoryClassifier {
   static CategoryClassifier Train(const std::vector<const ModelDatabase*>& databases,
                                   const CategoryClassifierOptions& options);
   // From features and labels directly (rows of `features` are samples); what Train calls.
+  // `groups` (optional, one per sample): with balance "models", the samples of one group (a model)
+  // share one weight, every group of a class weighing the same.
   static CategoryClassifier Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
-                                const std::vector<world::Category>& labels, const CategoryClassifierOptions& options);
+                                const std::vector<world::Category>& labels, const CategoryClassifierOptions& options,
+                                const std::vector<int>& groups = {});
 
   bool trained() const { return !classes_.empty(); }
   // P(category | shape); 0 for categories the training set lacks. All zeros when not trained.
