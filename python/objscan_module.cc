@@ -7,6 +7,7 @@
 // objscan.ConfigError (an InputError), a file argument that does not exist FileNotFoundError, any
 // other C++ exception RuntimeError; the message is the one line `objscan` prints after "objscan: error: ".
 // The GIL is released during every long call (loading, building, scanning, writing).
+#include <cstdio>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -372,6 +373,7 @@ class Scan {
     in.metrics = finished_ ? &metrics_ : nullptr;
     in.scene_spec = scene_.spec;
     in.database_path = database_.path;
+    in.warn = [](const std::string& m) { std::fprintf(stderr, "objscan: warning: %s\n", m.c_str()); };
     return in;
   }
 

@@ -180,6 +180,8 @@ int RunScan(const RunArgs& args) {
   // Measured before the files are written (run.json holds them; writing them costs little of either).
   outputs.peak_rss_mb = PeakRssMb();
   outputs.cpu_s = CpuSeconds();
+  // A placed model with no mesh is written as its scan points; say so once per model.
+  outputs.warn = [](const std::string& m) { std::fprintf(stderr, "objscan run: warning: %s\n", m.c_str()); };
   eval::WriteRunOutputs(args.out, outputs);
 
   std::printf(

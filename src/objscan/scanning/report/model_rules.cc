@@ -42,6 +42,8 @@ void NameByShapeRule::Apply(const ReportContext& context, ReportedObjects* objec
   for (std::size_t i = 0; i < objects->size(); ++i) {
     const ReportedObject& o = (*objects)[i];
     if (!o.reported() || !o.record.category) continue;
+    if (scope_ == "unfinished" && o.record.complete) continue;
+    if (scope_ == "other" && o.record.category != world::Category::kOther) continue;
     std::vector<recognition::RetrievedCategory> votes;
     if (o.full_matches != nullptr) {
       for (const segmentation::ModelMatch& m : o.full_matches->models) votes.push_back({m.category, m.objectness});
@@ -50,7 +52,8 @@ void NameByShapeRule::Apply(const ReportContext& context, ReportedObjects* objec
     }
     const std::optional<world::Category> named = context.sources->NameCategory(o.record.labels, votes);
     if (!named || named == o.record.category) continue;
-    const std::optional<segmentation::ModelMatch> best = context.sources->BestOfCategory(o.record.labels, *named);
+    const std::optional<segmentation::ModelMatch> best =
+        adopt_model_ ? context.sources->BestOfCategory(o.record.labels, *named) : std::nullopt;
     if (best) {
       objects->Adopt(i, *best, context.sources->ModelName(best->model_id), name());
     } else {

@@ -48,6 +48,12 @@ struct ReportOptions {
   // shape_agrees: a label the category classifier finds less than this times as likely as its first
   // choice goes (1 = the classifier's first choice only; 0.5 allows near-ties).
   double shape_min_odds = 0.5;
+  // name_by_shape: which labelled objects it may rename: "all", "unfinished" (not completed: the
+  // pieces and partial views where the category recognizer beats the best model offline) or "other"
+  // (only objects labelled other); and whether a new name brings that category's best model and its
+  // objectness (true) or changes the label alone (false).
+  std::string name_scope = "all";
+  bool name_adopts_model = true;
 
   template <class V>
   void Visit(V& v) {
@@ -60,6 +66,8 @@ struct ReportOptions {
     v("min_reported_elements", min_reported_elements);
     v("min_labelled_objectness", min_labelled_objectness);
     v("shape_min_odds", shape_min_odds);
+    v("name_scope", name_scope);
+    v("name_adopts_model", name_adopts_model);
   }
   // Throws ConfigError naming report.rules for an unknown or repeated rule.
   void Validate() const;

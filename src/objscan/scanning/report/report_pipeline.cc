@@ -39,7 +39,7 @@ std::unique_ptr<ReportRule> MakeReportRule(const std::string& name, const Report
   if (name == "drop_small") return std::make_unique<DropSmallRule>(options.min_reported_elements);
   if (name == "drop_unsure") return std::make_unique<DropUnsureRule>(options.min_labelled_objectness);
   if (name == "shape_agrees") return std::make_unique<ShapeAgreesRule>(options.shape_min_odds);
-  if (name == "name_by_shape") return std::make_unique<NameByShapeRule>();
+  if (name == "name_by_shape") return std::make_unique<NameByShapeRule>(options.name_scope, options.name_adopts_model);
   return nullptr;
 }
 
@@ -61,6 +61,8 @@ void ReportOptions::Validate() const {
   config::Require(min_reported_elements >= 0, "report.min_reported_elements", "must be >= 0");
   config::RequireInRange("report.min_labelled_objectness", min_labelled_objectness, 0.0, 1.0);
   config::RequireInRange("report.shape_min_odds", shape_min_odds, 0.0, 1.0);
+  config::Require(name_scope == "all" || name_scope == "unfinished" || name_scope == "other", "report.name_scope",
+                  "must be 'all', 'unfinished' or 'other', not '" + name_scope + "'");
 }
 
 ReportPipeline::ReportPipeline(const ReportOptions& options) {

@@ -195,8 +195,15 @@ class ShapeAgreesRule : public ReportRule {
 // few real models per category the nearest instance is often another category's.
 class NameByShapeRule : public ReportRule {
  public:
+  // scope and adopt_model: ReportOptions::name_scope, name_adopts_model.
+  explicit NameByShapeRule(std::string scope = "all", bool adopt_model = true)
+      : scope_(std::move(scope)), adopt_model_(adopt_model) {}
   const char* name() const override { return "name_by_shape"; }
   void Apply(const ReportContext& context, ReportedObjects* objects) const override;
+
+ private:
+  std::string scope_;
+  bool adopt_model_;
 };
 
 // The rule named `name` with its options from `options`; null for an unknown name.

@@ -456,6 +456,35 @@ TEST(ReportRulesTest, NameByShapeNamesWhatBothRecognizersSupport) {
   EXPECT_FALSE(c.record(unlabelled).category.has_value());  // unrecognized stays so
 }
 
+TEST(ReportRulesTest, NameByShapeScopesAndLabelOnlyRenames) {
+  const auto run = [](const std::string& scope, bool adopt) {
+    auto c = std::make_unique<ReportCase>();
+    // A completed sofa, an unfinished chair and an unfinished `other`; the classifier says table for all.
+    c->AddCompleted(1, Box({1, 1, 0}, {1.5, 1.5, 0.7}), Match(Category::kSofa, 0.97, 1));
+    c->AddUnfinished(2, Box({3, 1, 0}, {3.5, 1.5, 0.7}), Category::kChair, {Match(Category::kChair, 0.6, 2)}, 0.6);
+    c->AddUnfinished(3, Box({5, 1, 0}, {5.5, 1.5, 0.7}), Category::kOther, {Match(Category::kOther, 0.6, 3)}, 0.6);
+    for (std::int32_t l : {1, 2, 3}) {
+      c->sources.category_odds[{l}] = Odds(Category::kTable, Category::kSofa, 0.01f);
+      c->sources.best_of_category[{{l}, Category::kTable}] = Match(Category::kTable, 0.5, 10 + l);
+    }
+    c->Apply(NameByShapeRule(scope, adopt));
+    return c;
+  };
+  auto all = run("all", true);
+  EXPECT_EQ(all->record(0).category, Category::kTable);
+  EXPECT_EQ(all->record(1).model, "m12");
+  auto unfinished = run("unfinished", true);
+  EXPECT_EQ(unfinished->record(0).category, Category::kSofa);  // completed: kept
+  EXPECT_EQ(unfinished->record(1).category, Category::kTable);
+  EXPECT_EQ(unfinished->record(2).category, Category::kTable);
+  auto other = run("other", false);
+  EXPECT_EQ(other->record(0).category, Category::kSofa);
+  EXPECT_EQ(other->record(1).category, Category::kChair);
+  EXPECT_EQ(other->record(2).category, Category::kTable);
+  EXPECT_EQ(other->record(2).model, "");  // the label alone changed: no model was adopted
+  EXPECT_EQ(LastChange(other->record(2)).action, "relabel");
+}
+
 TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
   // A door label on a cabinet-deep thing: door_depth takes it and relabel gives it the confident
   // match; in the other order relabel finds nothing taken yet and the label is gone at the end.
