@@ -7,13 +7,13 @@
 // objscan.ConfigError (an InputError), a file argument that does not exist FileNotFoundError, any
 // other C++ exception RuntimeError; the message is the one line `objscan` prints after "objscan: error: ".
 // The GIL is released during every long call (loading, building, scanning, writing).
-#include <cstdio>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <mutex>
