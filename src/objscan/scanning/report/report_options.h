@@ -15,7 +15,8 @@ namespace objscan::scanning {
 
 // The rules objscan lists by default, in their order.
 std::vector<std::string> DefaultReportRules();
-// Every rule name: reopen_outgrown, then the default list.
+// Every rule name: reopen_outgrown, the default list, then the rules not listed by default (drop_unsure,
+// shape_agrees, name_by_shape).
 std::vector<std::string> AllReportRules();
 
 struct ReportOptions {
@@ -43,7 +44,8 @@ struct ReportOptions {
   // unrecognized (a completed object reached 0.96). An honest "unrecognized" instead of a guess. 0.92,
   // the objectness relabel asks of a confident match: on the OASC dev worlds, unfinished objects
   // below it were labelled right 5 times in 59 (on procedural rooms with their own generator's
-  // database, 57 in 94): docs/results/oasc-dev-2026-11-26-step-budget-unsure.md.
+  // database, 57 in 94): docs/results/oasc-dev-2026-11-26-step-budget-unsure.md. Not listed by default
+  // since the library became the database of real scenes (DefaultReportRules).
   double min_labelled_objectness = 0.92;
   // shape_agrees: a label the category classifier finds less than this times as likely as its first
   // choice goes (1 = the classifier's first choice only; 0.5 allows near-ties).
