@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -50,19 +51,27 @@ struct RunArgs {
 
 }  // namespace
 
+namespace {
+
+// What `objscan` says before a built-in database is built: a damaged cache always (it is not
+// progress but something that went wrong), the build itself unless quiet.
+std::function<void(const recognition::CachedDatabaseStatus&, const std::string&)> BuildNotice(bool verbose,
+                                                                                              const char* what) {
+  return [verbose, what](const recognition::CachedDatabaseStatus& status, const std::string& db_path) {
+    if (!status.damage.empty()) {
+      std::fprintf(stderr, "objscan: the cached model database is damaged, rebuilding it: %s\n", status.damage.c_str());
+    } else if (verbose) {
+      std::fprintf(stderr, "objscan: building %s (once; cached in %s)\n", what, db_path.c_str());
+    }
+  };
+}
+
+}  // namespace
+
 std::string DefaultDatabasePath(bool verbose) {
   const std::string path = recognition::EnsureDefaultDatabase(
       recognition::DefaultDatabaseCacheDir(), TerminalProgress("database"),
-      [verbose](const recognition::CachedDatabaseStatus& status, const std::string& db_path) {
-        // A damaged cache is reported even with --quiet: it is not progress but something that went wrong.
-        if (!status.damage.empty()) {
-          std::fprintf(stderr, "objscan: the cached model database is damaged, rebuilding it: %s\n",
-                       status.damage.c_str());
-        } else if (verbose) {
-          std::fprintf(stderr, "objscan: building the procedural model database (once; cached in %s)\n",
-                       db_path.c_str());
-        }
-      });
+      BuildNotice(verbose, "the procedural model database"));
   FinishProgress();
   return path;
 }
@@ -71,17 +80,7 @@ std::string DefaultDatabasePathFor(const std::string& scene_spec, bool verbose) 
   if (recognition::UsesProceduralDatabase(scene_spec)) return DefaultDatabasePath(verbose);
   const std::string path = recognition::EnsureRealDatabase(
       recognition::DefaultDatabaseCacheDir(), TerminalProgress("database"),
-      [verbose](const recognition::CachedDatabaseStatus& status, const std::string& db_path) {
-        if (!status.damage.empty()) {
-          std::fprintf(stderr, "objscan: the cached model database is damaged, rebuilding it: %s\n",
-                       status.damage.c_str());
-        } else if (verbose) {
-          std::fprintf(stderr,
-                       "objscan: building the real model database from the Sweet Home 3D library (once, a few "
-                       "minutes; cached in %s)\n",
-                       db_path.c_str());
-        }
-      });
+      BuildNotice(verbose, "the real model database from the Sweet Home 3D library, a few minutes"));
   FinishProgress();
   return path;
 }

@@ -56,26 +56,36 @@ std::string DefaultDatabasePathIn(const std::string& cache_dir) {
          BuildOptionsKey(options) + ".db";
 }
 
-std::string EnsureDefaultDatabase(
-    const std::string& cache_dir, const ProgressCallback& progress,
-    const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build) {
-  const std::string path = DefaultDatabasePathIn(cache_dir);
+namespace {
+
+using BeforeBuild = std::function<void(const CachedDatabaseStatus& status, const std::string& path)>;
+
+// The database at `path` in `cache_dir`, valid (database_cache.h): the folder is made when missing,
+// temporaries of a killed build are removed, and `build` runs when the file is missing or damaged.
+std::string EnsureBuiltInDatabase(const std::string& cache_dir, const std::string& path,
+                                  const std::function<ModelDatabase()>& build, const BeforeBuild& before_build) {
   std::error_code ec;
   std::filesystem::create_directories(cache_dir, ec);
   if (ec) throw InputError(cache_dir + ": cannot create the database cache folder: " + ec.message());
   // Temporaries of a build that was killed (io/atomic_file.h).
   io::RemoveStaleTempFiles(cache_dir);
-  const DatabaseBuildOptions options;
-  EnsureCachedDatabase(
-      path,
-      [&] {
-        return BuildDatabase(ProceduralModelSources(kDefaultDatabaseVariants, 0, kDefaultDatabaseSampling), options,
-                             progress);
-      },
-      [&](const CachedDatabaseStatus& status) {
-        if (before_build) before_build(status, path);
-      });
+  EnsureCachedDatabase(path, build, [&](const CachedDatabaseStatus& status) {
+    if (before_build) before_build(status, path);
+  });
   return path;
+}
+
+}  // namespace
+
+std::string EnsureDefaultDatabase(const std::string& cache_dir, const ProgressCallback& progress,
+                                  const BeforeBuild& before_build) {
+  return EnsureBuiltInDatabase(
+      cache_dir, DefaultDatabasePathIn(cache_dir),
+      [&] {
+        return BuildDatabase(ProceduralModelSources(kDefaultDatabaseVariants, 0, kDefaultDatabaseSampling),
+                             DatabaseBuildOptions(), progress);
+      },
+      before_build);
 }
 
 namespace {
@@ -103,26 +113,16 @@ std::string RealDatabasePathIn(const std::string& cache_dir) {
          BuildOptionsKey(options, RealDatabaseContentKey(catalogs, map_path)) + ".db";
 }
 
-std::string EnsureRealDatabase(
-    const std::string& cache_dir, const ProgressCallback& progress,
-    const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build) {
-  const std::string path = RealDatabasePathIn(cache_dir);
-  std::error_code ec;
-  std::filesystem::create_directories(cache_dir, ec);
-  if (ec) throw InputError(cache_dir + ": cannot create the database cache folder: " + ec.message());
-  io::RemoveStaleTempFiles(cache_dir);
-  const DatabaseBuildOptions options;
-  EnsureCachedDatabase(
-      path,
+std::string EnsureRealDatabase(const std::string& cache_dir, const ProgressCallback& progress,
+                               const BeforeBuild& before_build) {
+  return EnsureBuiltInDatabase(
+      cache_dir, RealDatabasePathIn(cache_dir),
       [&] {
         const io::CategoryMap map = io::CategoryMap::Load(io::ResolveCategoryMapPath(kSweetHome3dCategoryMap));
         const SweetHome3dSources sh3d = SweetHome3dModelSources(SweetHome3dCatalogsOf("sweethome3d"), map);
-        return BuildDatabase(sh3d.sources, options, progress);
+        return BuildDatabase(sh3d.sources, DatabaseBuildOptions(), progress);
       },
-      [&](const CachedDatabaseStatus& status) {
-        if (before_build) before_build(status, path);
-      });
-  return path;
+      before_build);
 }
 
 bool UsesProceduralDatabase(const std::string& scene_spec) { return scene_spec.rfind("procedural:", 0) == 0; }
