@@ -26,11 +26,7 @@ Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand
 
 fs::path TempDir(const std::string& name) { return objscan::testing::ScratchPath("objscan_e2e_" + name); }
 
-int CountLines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
+using objscan::testing::CountLines;
 
 TEST(CliTest, HelpListsEverySubcommandOfTheDesign) {
   const Result r = RunObjscan("--help");

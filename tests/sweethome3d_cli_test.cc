@@ -18,11 +18,7 @@ using Result = objscan::testing::CommandResult;
 
 Result RunObjscan(const std::string& args) { return objscan::testing::RunCommand(OBJSCAN_BINARY, args); }
 
-int CountLines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
+using objscan::testing::CountLines;
 
 class SweetHome3dCliTest : public ::testing::Test {
  protected:

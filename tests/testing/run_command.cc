@@ -44,4 +44,10 @@ std::filesystem::path ScratchPath(const std::string& name) {
   return p;
 }
 
+int CountLines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
 }  // namespace objscan::testing

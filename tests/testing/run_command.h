@@ -15,6 +15,9 @@ struct CommandResult {
 // Runs `binary args` through the shell; stderr goes to a private temporary file.
 CommandResult RunCommand(const std::string& binary, const std::string& args);
 
+// The number of lines of a command's output (its newlines).
+int CountLines(const std::string& text);
+
 // The whole content of a file ("" when it cannot be read).
 std::string ReadFile(const std::filesystem::path& path);
 
