@@ -175,9 +175,73 @@ std::array<float, kNumShapeFeatures> ShapeFeatures(const std::vector<Eigen::Vect
     f[k++] = std::clamp(Quantile(&horizontal_above_floor, 0.25), -0.5f, 3.f);
     f[k++] = std::clamp(Quantile(&horizontal_above_floor, 0.75), -0.5f, 3.f);
   }
+  // Layout: where the surface lies in the shape's own box, on a kLayoutCells^3 grid along the long
+  // side, the short side and the height. The bands above see a chair's seat and a table's top at
+  // their heights, not whether the tall part stands at one side (a chair's back, a bed's head) or
+  // over all of it (a table, a cabinet). Each horizontal axis is turned so that the taller half of
+  // the surface lies on its positive side: the layout does not depend on how the shape is turned.
+  // Points spread over the two nearest cells of each axis (tent weights), so a point moving a little
+  // moves the features a little.
+  const Eigen::Vector2d axis_long = eig_xy.eigenvectors().col(1), axis_short = eig_xy.eigenvectors().col(0);
+  std::vector<Eigen::Vector3f> local(n);  // (along long, along short, height above bottom)
+  double lean_long = 0.0, lean_short = 0.0, mean_h = 0.0;
+  for (std::size_t i = 0; i < n; ++i) mean_h += points[i].z() - bottom;
+  mean_h /= static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d d = points[i].head<2>().cast<double>() - mean_xy;
+    const double h = points[i].z() - bottom;
+    local[i] = Eigen::Vector3f(static_cast<float>(d.dot(axis_long)), static_cast<float>(d.dot(axis_short)),
+                               static_cast<float>(h));
+    lean_long += local[i].x() * (h - mean_h);
+    lean_short += local[i].y() * (h - mean_h);
+  }
+  std::array<float, 3> lo{}, span{};
+  for (int a = 0; a < 3; ++a) {
+    for (std::size_t i = 0; i < n; ++i) values[i] = local[i][a] * (a == 0 && lean_long < 0.0 ? -1.f : 1.f) *
+                                                     (a == 1 && lean_short < 0.0 ? -1.f : 1.f);
+    lo[static_cast<std::size_t>(a)] = Quantile(&values, kTrim);
+    span[static_cast<std::size_t>(a)] = std::max(1e-3f, Quantile(&values, 1.0 - kTrim) - lo[static_cast<std::size_t>(a)]);
+  }
+  constexpr int c = kLayoutCells;
+  std::array<float, c * c * c> occupancy{};
+  std::array<float, c * c> column_top{}, column_horizontal{}, column_weight{};
+  auto tent = [](float t, int* cell, float* upper_weight) {  // t in [0, 1] -> two cells and a weight
+    const float x = std::clamp(t * c - 0.5f, 0.f, static_cast<float>(c - 1));
+    *cell = std::min(static_cast<int>(x), c - 2);
+    *upper_weight = x - static_cast<float>(*cell);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const float u = (local[i].x() * (lean_long < 0.0 ? -1.f : 1.f) - lo[0]) / span[0];
+    const float v = (local[i].y() * (lean_short < 0.0 ? -1.f : 1.f) - lo[1]) / span[1];
+    const float h = std::clamp((local[i].z() - lo[2]) / span[2], 0.f, 1.f);
+    int cu, cv, ch;
+    float wu, wv, wh;
+    tent(u, &cu, &wu);
+    tent(v, &cv, &wv);
+    tent(h, &ch, &wh);
+    const bool horizontal = std::abs(normals[i].z()) > kHorizontalMinAbsNz;
+    for (int a = 0; a < 2; ++a) {
+      for (int b = 0; b < 2; ++b) {
+        const float w_col = (a ? wu : 1.f - wu) * (b ? wv : 1.f - wv);
+        const int col = (cu + a) * c + (cv + b);
+        column_weight[static_cast<std::size_t>(col)] += w_col;
+        column_top[static_cast<std::size_t>(col)] = std::max(column_top[static_cast<std::size_t>(col)], w_col > 0.25f ? h : 0.f);
+        if (horizontal) column_horizontal[static_cast<std::size_t>(col)] += w_col;
+        for (int e = 0; e < 2; ++e) {
+          occupancy[static_cast<std::size_t>(col * c + ch + e)] += w_col * (e ? wh : 1.f - wh);
+        }
+      }
+    }
+  }
+  for (float s : occupancy) f[k++] = s * inv_n;
+  for (float s : column_top) f[k++] = s;
+  for (std::size_t col = 0; col < column_horizontal.size(); ++col) {
+    f[k++] = column_weight[col] > 0.f ? column_horizontal[col] / column_weight[col] : 0.f;
+  }
   return f;
 }
-static_assert(kNumRelativeShapeFeatures == 26 && kNumShapeFeatures == 26 + 2 + 9 + 10 + 4 + 2,
+static_assert(kNumRelativeShapeFeatures == 26 &&
+                  kNumShapeFeatures == 26 + 2 + 9 + 10 + 4 + 2 + kLayoutCells * kLayoutCells * (kLayoutCells + 2),
               "ShapeFeatures' layout and its counts disagree");
 
 CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,

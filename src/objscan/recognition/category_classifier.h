@@ -41,7 +41,9 @@ struct CategoryClassifierOptions {
   std::uint64_t seed = 1;            // half-view cuts and support heights drawn per sample
   // Model databases whose models are training samples too, beside the recognizer's own (e.g. a
   // furniture library beside a database of a benchmark's models): the classifier learns categories
-  // from many shapes while retrieval keeps its database. Loaded when the classifier is trained.
+  // from many shapes while retrieval keeps its database. Loaded when the classifier is trained. The
+  // words "procedural" and "sweethome3d" stand for the built-in databases (default_database.h); one
+  // holding the recognizer's own models is skipped.
   std::vector<std::string> extra_training_databases;
   // How samples weigh: "samples" (every sample the same within its class) or "models" (every model
   // the same within its class, however many pieces and views it gave). Classes weigh the same.
@@ -77,9 +79,12 @@ struct CategoryClassifierOptions {
 // rotation-invariant about Z and independent of where the set stands in XY. The first
 // kNumRelativeShapeFeatures do not depend on the floor either (heights from the set's own bottom);
 // the others are heights above the floor, surfaces per band of height above the floor, and the D2
-// and normal-angle distributions of point pairs. Fewer than 8 points give all zeros.
+// and normal-angle distributions of point pairs, then the layout: the surface on a coarse grid of the
+// shape's own box (long side x short side x height, turned so its taller side is positive), each
+// column's top and its share of horizontal surface. Fewer than 8 points give all zeros.
 constexpr int kNumRelativeShapeFeatures = 26;
-constexpr int kNumShapeFeatures = 53;
+constexpr int kLayoutCells = 3;  // the layout grid's cells per axis (the last block of features)
+constexpr int kNumShapeFeatures = 53 + kLayoutCells * kLayoutCells * (kLayoutCells + 2);
 std::array<float, kNumShapeFeatures> ShapeFeatures(const std::vector<Eigen::Vector3f>& points,
                                                    const std::vector<Eigen::Vector3f>& normals,
                                                    double floor_z_m = 0.0);

@@ -125,6 +125,22 @@ std::string EnsureRealDatabase(const std::string& cache_dir, const ProgressCallb
       before_build);
 }
 
+std::vector<std::string> ResolveTrainingDatabases(const std::vector<std::string>& names, const std::string& cache_dir,
+                                                  const ProgressCallback& progress, const BeforeBuild& before_build) {
+  std::vector<std::string> paths;
+  paths.reserve(names.size());
+  for (const std::string& name : names) {
+    if (name == "procedural") {
+      paths.push_back(EnsureDefaultDatabase(cache_dir, progress, before_build));
+    } else if (name == "sweethome3d") {
+      paths.push_back(EnsureRealDatabase(cache_dir, progress, before_build));
+    } else {
+      paths.push_back(name);
+    }
+  }
+  return paths;
+}
+
 bool UsesProceduralDatabase(const std::string& scene_spec) { return scene_spec.rfind("procedural:", 0) == 0; }
 
 std::uint64_t DatabaseMemoryLimitBytes(double max_database_memory_mb) {

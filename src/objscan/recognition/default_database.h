@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "objscan/common/progress.h"
 #include "objscan/recognition/database_cache.h"
@@ -35,6 +36,14 @@ std::string EnsureDefaultDatabase(
 std::string RealDatabasePathIn(const std::string& cache_dir);
 std::string EnsureRealDatabase(
     const std::string& cache_dir, const ProgressCallback& progress = nullptr,
+    const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build = nullptr);
+
+// The files `names` stand for, as recognition.classifier.extra_training_databases lists them: the
+// words "procedural" and "sweethome3d" are the built-in procedural and real databases (made valid in
+// `cache_dir` like EnsureDefaultDatabase and EnsureRealDatabase; `progress` and `before_build` as there),
+// any other name is a database file, returned as it is.
+std::vector<std::string> ResolveTrainingDatabases(
+    const std::vector<std::string>& names, const std::string& cache_dir, const ProgressCallback& progress = nullptr,
     const std::function<void(const CachedDatabaseStatus& status, const std::string& path)>& before_build = nullptr);
 
 // The built-in database for a scene: the procedural one for procedural:CATEGORY:SEED scenes, the real

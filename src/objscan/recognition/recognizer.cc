@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "objscan/common/rng.h"
+#include "objscan/recognition/default_database.h"
 #include "objscan/recognition/keypoints.h"
 #include "objscan/recognition/normals.h"
 
@@ -61,10 +62,24 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
 const CategoryClassifier& Recognizer::classifier() const {
   std::call_once(classifier_once_, [this] {
     std::vector<ModelDatabase> extra;
-    extra.reserve(options_.classifier.extra_training_databases.size());
-    for (const std::string& path : options_.classifier.extra_training_databases) extra.push_back(ModelDatabase::Load(path));
+    const std::vector<std::string> paths =
+        ResolveTrainingDatabases(options_.classifier.extra_training_databases, DefaultDatabaseCacheDir());
+    extra.reserve(paths.size());
+    for (const std::string& path : paths) extra.push_back(ModelDatabase::Load(path));
     std::vector<const ModelDatabase*> all = {&database_};
-    for (const ModelDatabase& db : extra) all.push_back(&db);
+    // A database of the recognizer's own models (the built-in procedural one listed for a procedural
+    // scene) would only count every sample twice.
+    auto same_models = [](const ModelDatabase& a, const ModelDatabase& b) {
+      if (a.models().size() != b.models().size() || a.entries().size() != b.entries().size()) return false;
+      for (std::size_t i = 0; i < a.models().size(); ++i) {
+        const DatabaseModel &x = a.models()[i], &y = b.models()[i];
+        if (x.name != y.name || x.category != y.category || x.source != y.source) return false;
+      }
+      return true;
+    };
+    for (const ModelDatabase& db : extra) {
+      if (!same_models(db, database_)) all.push_back(&db);
+    }
     classifier_ = CategoryClassifier::Train(all, options_.classifier);
   });
   return classifier_;

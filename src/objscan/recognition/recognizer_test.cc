@@ -2,12 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <limits>
 #include <optional>
 
+#include "objscan/common/error.h"
 #include "objscan/geometry/pose.h"
+#include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/shape_database_suite.h"
 
 namespace objscan::recognition {
@@ -320,6 +325,30 @@ TEST_F(RecognizerTest, TwoStageRetrievalAgreesWithRefiningTheWholeShortlist) {
       }
     }
   }
+}
+
+// recognition.classifier.extra_training_databases: another database's models train the classifier
+// too (its posterior changes), a file holding the recognizer's own models adds nothing (the same
+// classifier as without it), and a missing file names itself.
+TEST_F(RecognizerTest, ExtraTrainingDatabasesAddOtherModelsOnly) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("objscan_recognizer_extra_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string own = (dir / "own.db").string(), other = (dir / "other.db").string();
+  db_->Save(own);
+  BuildDatabaseFromScans({testing::ShapeModels(0.01)[0]}, testing::SmallDatabaseOptions()).Save(other);
+  const geometry::PointCloud cloud = Query(&testing::ChairLike, Placement(40.0, {1.0, 0.5, 0.0}), true);
+  auto posterior = [&](const std::vector<std::string>& extra) {
+    RecognitionOptions options;
+    options.classifier.extra_training_databases = extra;
+    const Recognizer r(*db_, options);
+    return r.CategoryPosterior(r.Describe(cloud));
+  };
+  const auto alone = posterior({});
+  EXPECT_EQ(posterior({own}), alone);
+  EXPECT_NE(posterior({other}), alone);
+  EXPECT_THROW(posterior({(dir / "missing.db").string()}), InputError);
+  fs::remove_all(dir);
 }
 
 // recognition.classifier_weight: the query carries the database-trained classifier's P(k) / max P,
