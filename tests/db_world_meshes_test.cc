@@ -121,7 +121,7 @@ TEST(DbWorldMeshesTest, DatabaseBuiltFromAWorldGivesEveryMeshBackWithoutTheWorld
   EXPECT_LE(meshes.at("triangles").get<int>(), 60 + 3000) << info.out;
 
   const Result eval = RunObjscan("db eval --db " + db.string() + " --queries procedural --queries-per-category 1 "
-                                 "--threads 1");
+                                 "--threads 1 --set recognition.classifier.extra_training_databases=[]");
   ASSERT_EQ(eval.exit_code, 0) << eval.err;
   const nlohmann::json j = nlohmann::json::parse(eval.out);
   EXPECT_EQ(j.at("objectness_models").get<int>(), 2) << eval.out;  // each model's mesh scanned afresh

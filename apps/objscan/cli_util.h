@@ -25,6 +25,9 @@ std::string DefaultDatabasePath(bool verbose);
 // The built-in database for a scene (recognition::UsesProceduralDatabase): procedural scenes the
 // procedural one, every other scene the real one (the Sweet Home 3D library); built on first use.
 std::string DefaultDatabasePathFor(const std::string& scene_spec, bool verbose);
+// recognition.classifier.extra_training_databases as files: the built-in databases it names
+// ("procedural", "sweethome3d") built on first use with progress, other names as they are.
+std::vector<std::string> TrainingDatabasePaths(const std::vector<std::string>& names, bool verbose);
 
 // The memory limit of a model database in bytes (ModelDatabase::Load): recognition.max_database_memory_mb,
 // or when that is 0 the memory the machine has available now (MemAvailable; 0 = no limit when unknown).

@@ -233,6 +233,8 @@ int RunEval(const DbArgs& a) {
   const std::vector<recognition::ModelSource> queries =
       procedural ? recognition::ProceduralQuerySources(db, options)
                  : ModelSourcesFrom(a.queries, a, "--queries", &skipped_folders);
+  options.recognition.classifier.extra_training_databases =
+      TrainingDatabasePaths(options.recognition.classifier.extra_training_databases, true);
   const recognition::DatabaseEvalResult r =
       recognition::EvaluateDatabase(db, queries, options, TerminalProgress("db eval"));
   FinishProgress();

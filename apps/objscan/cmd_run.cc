@@ -85,6 +85,14 @@ std::string DefaultDatabasePathFor(const std::string& scene_spec, bool verbose) 
   return path;
 }
 
+std::vector<std::string> TrainingDatabasePaths(const std::vector<std::string>& names, bool verbose) {
+  std::vector<std::string> paths = recognition::ResolveTrainingDatabases(
+      names, recognition::DefaultDatabaseCacheDir(), TerminalProgress("database"),
+      BuildNotice(verbose, "a built-in model database the category recognizer trains on"));
+  FinishProgress();
+  return paths;
+}
+
 namespace {
 
 // The run's objects reported under each variant of the report options, scored like the run.

@@ -44,7 +44,7 @@ struct CategoryClassifierOptions {
   // from many shapes while retrieval keeps its database. Loaded when the classifier is trained. The
   // words "procedural" and "sweethome3d" stand for the built-in databases (default_database.h); one
   // holding the recognizer's own models is skipped.
-  std::vector<std::string> extra_training_databases;
+  std::vector<std::string> extra_training_databases = {"procedural"};
   // How samples weigh: "samples" (every sample the same within its class) or "models" (every model
   // the same within its class, however many pieces and views it gave). Classes weigh the same.
   std::string balance = "samples";

@@ -33,6 +33,7 @@ DatabaseEvalOptions FastEvalOptions() {
   options.scan = FastBuildOptions().scan;
   options.objectness_models_per_category = 0;
   options.threads = 2;
+  options.recognition.classifier.extra_training_databases = {};  // the database's own models only
   return options;
 }
 

@@ -355,8 +355,10 @@ TEST_F(RecognizerTest, ExtraTrainingDatabasesAddOtherModelsOnly) {
 // and each entry's objectness, fit and rank score are those without the prior times
 // (P(k) / max P)^w; 0 leaves the paper's scores (no prior at all).
 TEST_F(RecognizerTest, TheCategoryPriorScalesScoresByTheClassifiersOdds) {
-  const Recognizer plain(*db_, RecognitionOptions());
-  RecognitionOptions options;
+  RecognitionOptions plain_options;
+  plain_options.classifier.extra_training_databases = {};  // the database's own models only
+  const Recognizer plain(*db_, plain_options);
+  RecognitionOptions options = plain_options;
   options.classifier_weight = 0.5;
   const Recognizer with_prior(*db_, options);
   ASSERT_TRUE(with_prior.classifier().trained());
