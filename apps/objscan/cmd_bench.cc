@@ -22,6 +22,7 @@
 #include "objscan/eval/report.h"
 #include "objscan/io/atomic_file.h"
 #include "objscan/io/scene_spec.h"
+#include "objscan/recognition/category_classifier.h"
 #include "objscan/recognition/database_cache.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/scanning/system_config.h"
@@ -194,6 +195,9 @@ int RunBench(const BenchArgs& a) {
   } else if (!pending.empty()) {
     const std::string base =
         !a.db.empty() ? a.db : suite.name == "procedural" ? DefaultDatabasePath(true) : DefaultDatabasePathFor("", true);
+    // The built-in databases the category recognizer learns from, built once here rather than by two
+    // runs at once.
+    if (suite.name != "procedural") TrainingDatabasePaths(recognition::CategoryClassifierOptions().extra_training_databases, true);
     const std::string no_parts = (db_dir / "no-parts.db").string();
     // Checked (and built) once, not once per run: verifying reads the whole file.
     if (std::any_of(pending.begin(), pending.end(), [](const eval::BenchJob& job) { return job.method.database_without_parts; })) {

@@ -2,6 +2,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <functional>
@@ -153,6 +154,11 @@ int RunScan(const RunArgs& args) {
   if (database.models().empty()) throw InputError(db_path + ": the model database is empty");
   std::set<world::Category> known;
   for (const auto& m : database.models()) known.insert(m.category);
+  // The built-in databases the category recognizer also learns from, built now with progress rather
+  // than silently when it is first asked (a database of generated models needs none of them).
+  const bool generated = std::all_of(database.models().begin(), database.models().end(),
+                                     [](const auto& m) { return m.source.rfind("procedural/", 0) == 0; });
+  if (!generated) TrainingDatabasePaths(config.recognition.classifier.extra_training_databases, !args.quiet);
 
   scanning::Scanner scanner(config, scene, database, args.seed);
   eval::RunEvaluator evaluator(scene, config, std::vector<world::Category>(known.begin(), known.end()));

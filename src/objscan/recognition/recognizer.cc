@@ -61,14 +61,22 @@ Recognizer::Recognizer(const ModelDatabase& database, const RecognitionOptions& 
 
 const CategoryClassifier& Recognizer::classifier() const {
   std::call_once(classifier_once_, [this] {
+    // The generator's shapes are what a database of generated models already holds (procedural
+    // scenes, and the small databases tests build): the built-in procedural database is not loaded.
+    const bool generated = !database_.models().empty() &&
+                           std::all_of(database_.models().begin(), database_.models().end(), [](const DatabaseModel& m) {
+                             return m.source.rfind("procedural/", 0) == 0;
+                           });
+    std::vector<std::string> names;
+    for (const std::string& name : options_.classifier.extra_training_databases) {
+      if (!(generated && name == "procedural")) names.push_back(name);
+    }
     std::vector<ModelDatabase> extra;
-    const std::vector<std::string> paths =
-        ResolveTrainingDatabases(options_.classifier.extra_training_databases, DefaultDatabaseCacheDir());
+    const std::vector<std::string> paths = ResolveTrainingDatabases(names, DefaultDatabaseCacheDir());
     extra.reserve(paths.size());
     for (const std::string& path : paths) extra.push_back(ModelDatabase::Load(path));
     std::vector<const ModelDatabase*> all = {&database_};
-    // A database of the recognizer's own models (the built-in procedural one listed for a procedural
-    // scene) would only count every sample twice.
+    // A database of the recognizer's own models would only count every sample twice.
     auto same_models = [](const ModelDatabase& a, const ModelDatabase& b) {
       if (a.models().size() != b.models().size() || a.entries().size() != b.entries().size()) return false;
       for (std::size_t i = 0; i < a.models().size(); ++i) {

@@ -54,7 +54,7 @@ struct ReportOptions {
   // pieces and partial views where the category recognizer beats the best model offline) or "other"
   // (only objects labelled other); and whether a new name brings that category's best model and its
   // objectness (true) or changes the label alone (false).
-  std::string name_scope = "all";
+  std::string name_scope = "unfinished";
   bool name_adopts_model = true;
 
   template <class V>

@@ -509,8 +509,8 @@ TEST(ReportPipelineTest, RulesRunInTheListedOrder) {
 TEST(ReportPipelineTest, DefaultListNamesEveryRuleOnceAndUnknownNamesAreRejected) {
   const std::vector<std::string> all = AllReportRules();
   EXPECT_EQ(std::set<std::string>(all.begin(), all.end()).size(), all.size());
-  // + reopen_outgrown, drop_unsure, shape_agrees, name_by_shape
-  EXPECT_EQ(DefaultReportRules().size() + 4, all.size());
+  // + reopen_outgrown, drop_unsure, shape_agrees
+  EXPECT_EQ(DefaultReportRules().size() + 3, all.size());
   ReportOptions options;
   for (const auto& name : all) EXPECT_NE(MakeReportRule(name, options), nullptr) << name;
   EXPECT_TRUE(ReportPipeline(options).needs_category_extents());
