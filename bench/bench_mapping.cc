@@ -9,7 +9,7 @@
 #include "objscan/mapping/occupancy_map.h"
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/incremental_segmenter.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/world/procedural/procedural.h"
 
 #ifdef OBJSCAN_HAVE_OPEN3D
@@ -21,12 +21,12 @@ namespace {
 using namespace objscan;
 
 // One noisy frame from the middle of the room looking across it, rendered once.
-const sim::DepthFrame& BedroomFrame() {
-  static const sim::DepthFrame frame = [] {
+const platform::DepthFrame& BedroomFrame() {
+  static const platform::DepthFrame frame = [] {
     const world::Scene scene = world::procedural::GenerateRoom("bedroom", 1);
-    sim::SensorOptions sensor;
+    render::SensorOptions sensor;
     sensor.threads = 1;
-    const sim::DepthCamera camera(scene, sensor);
+    const render::DepthCamera camera(scene, sensor);
     const geometry::Aabb3 box = scene.Bounds();
     Eigen::Vector3d eye = box.Center();
     eye.z() = 1.3;
@@ -37,7 +37,7 @@ const sim::DepthFrame& BedroomFrame() {
 }
 
 void BM_FuseFrame(benchmark::State& state) {
-  const sim::DepthFrame& frame = BedroomFrame();
+  const platform::DepthFrame& frame = BedroomFrame();
   for (auto _ : state) {
     state.PauseTiming();
     auto map = std::make_unique<mapping::SurfaceMap>();
@@ -51,7 +51,7 @@ BENCHMARK(BM_FuseFrame)->Unit(benchmark::kMillisecond);
 
 // Fusing into a map that already holds the surface (the steady state of a scan).
 void BM_FuseFrameRevisit(benchmark::State& state) {
-  const sim::DepthFrame& frame = BedroomFrame();
+  const platform::DepthFrame& frame = BedroomFrame();
   mapping::SurfaceMap map;
   map.Integrate(frame);
   for (auto _ : state) {
@@ -62,7 +62,7 @@ void BM_FuseFrameRevisit(benchmark::State& state) {
 BENCHMARK(BM_FuseFrameRevisit)->Unit(benchmark::kMillisecond);
 
 void BM_OctomapInsert(benchmark::State& state) {
-  const sim::DepthFrame& frame = BedroomFrame();
+  const platform::DepthFrame& frame = BedroomFrame();
   for (auto _ : state) {
     state.PauseTiming();
     auto occupancy = std::make_unique<mapping::OccupancyMap>();
@@ -75,7 +75,7 @@ BENCHMARK(BM_OctomapInsert)->Unit(benchmark::kMillisecond);
 
 // Frame segmentation + propagation + voting (fusion excluded: its association is an input).
 void BM_PresegmentFrame(benchmark::State& state) {
-  const sim::DepthFrame& frame = BedroomFrame();
+  const platform::DepthFrame& frame = BedroomFrame();
   mapping::SurfaceMap map;
   mapping::FrameAssociation association;
   map.Integrate(frame, &association);
@@ -97,8 +97,8 @@ struct Open3dFrame {
 };
 
 Open3dFrame MakeOpen3dFrame() {
-  const sim::DepthFrame& frame = BedroomFrame();
-  const sim::CameraIntrinsics& in = frame.intrinsics;
+  const platform::DepthFrame& frame = BedroomFrame();
+  const platform::CameraIntrinsics& in = frame.intrinsics;
   open3d::geometry::Image depth;
   depth.Prepare(in.width_px, in.height_px, 1, 4);
   std::memcpy(depth.data_.data(), frame.depth_m.data(), frame.depth_m.size() * sizeof(float));

@@ -1,4 +1,4 @@
-// Benchmarks of the simulator: one depth frame of procedural:bedroom:1 through sim::DepthCamera
+// Benchmarks of the simulator: one depth frame of procedural:bedroom:1 through render::DepthCamera
 // against the same rays through a plain per-ray rtcIntersect1 loop on an identically built Embree
 // scene (the peer), and A* on the room's grid.
 //
@@ -11,9 +11,9 @@
 #include <stdexcept>
 
 #include "objscan/common/rng.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
-#include "objscan/sim/navigator.h"
+#include "objscan/navigation/navigator.h"
 #include "objscan/world/procedural/procedural.h"
 
 namespace {
@@ -32,15 +32,15 @@ geometry::Pose3 BenchCameraPose() {
 }
 
 void BM_RenderDepthFrame(benchmark::State& state) {
-  sim::SensorOptions options;  // 640x480, noise on (the default)
+  render::SensorOptions options;  // 640x480, noise on (the default)
   options.noise = state.range(0) != 0;
   options.threads = 1;
-  const sim::DepthCamera camera(Bedroom(), options);
+  const render::DepthCamera camera(Bedroom(), options);
   const geometry::Pose3 pose = BenchCameraPose();
   Rng rng(1);
   std::size_t valid = 0;
   for (auto _ : state) {
-    const sim::DepthFrame frame = camera.Render(pose, &rng);
+    const platform::DepthFrame frame = camera.Render(pose, &rng);
     valid = frame.NumValid();
     benchmark::DoNotOptimize(frame.depth_m.data());
   }
@@ -50,7 +50,7 @@ void BM_RenderDepthFrame(benchmark::State& state) {
 BENCHMARK(BM_RenderDepthFrame)->Arg(1)->ArgName("noise")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RenderDepthFrame)->Arg(0)->ArgName("noise")->Unit(benchmark::kMillisecond);
 
-// The peer: the scene committed exactly as sim::Raycaster does (one triangle geometry, robust flag,
+// The peer: the scene committed exactly as render::Raycaster does (one triangle geometry, robust flag,
 // high build quality), the frame's rays one by one through rtcIntersect1.
 void BM_EmbreeRawRays(benchmark::State& state) {
   const world::TriangleSoup soup = Bedroom().BuildTriangleSoup();
@@ -72,7 +72,7 @@ void BM_EmbreeRawRays(benchmark::State& state) {
   if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("embree error in BM_EmbreeRawRays");
 
   // The same rays as the depth camera: pixel centres, camera-frame z = 1, in row-major order.
-  const sim::CameraIntrinsics K = sim::SensorOptions().Intrinsics();
+  const platform::CameraIntrinsics K = render::SensorOptions().Intrinsics();
   const geometry::Pose3 pose = BenchCameraPose();
   std::vector<float> directions;
   directions.reserve(3 * static_cast<std::size_t>(K.NumPixels()));
@@ -126,9 +126,9 @@ BENCHMARK(BM_EmbreeRawRays)->Unit(benchmark::kMillisecond);
 // around its foot into the gap left of it.
 void BM_AStar(benchmark::State& state) {
   const sim::GroundTruthOccupancy source(Bedroom());
-  sim::NavigatorOptions options;
+  navigation::NavigatorOptions options;
   options.smooth_path = state.range(0) != 0;
-  const sim::Navigator nav(source, 0.25, 1.8, options);
+  const navigation::Navigator nav(source, 0.25, 1.8, options);
   Eigen::Vector2d start, goal;
   if (!nav.NearestFree(Eigen::Vector2d(3.2, 3.2), 0.5, &start) || !nav.NearestFree(Eigen::Vector2d(0.45, 3.0), 0.5, &goal)) {
     state.SkipWithError("no free start or goal in the bedroom");
@@ -137,7 +137,7 @@ void BM_AStar(benchmark::State& state) {
   double length = 0.0;
   int expansions = 0;
   for (auto _ : state) {
-    const sim::Path2D path = nav.Plan(start, goal);
+    const navigation::Path2D path = nav.Plan(start, goal);
     length = path.length_m;
     expansions = path.expansions;
     benchmark::DoNotOptimize(path.waypoints.data());

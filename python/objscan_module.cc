@@ -37,6 +37,7 @@
 #include "objscan/scanning/scanner.h"
 #include "objscan/scanning/scene_limits.h"
 #include "objscan/scanning/system_config.h"
+#include "objscan/sim/simulated_robot.h"
 #include "objscan/world/category.h"
 #include "objscan/world/scene.h"
 
@@ -191,11 +192,14 @@ class Scan {
     Call({}, [&] {
       std::set<world::Category> known;
       for (const auto& m : database_.database->models()) known.insert(m.category);
-      scanner_ = std::make_unique<scanning::Scanner>(config_, *scene_.scene, *database_.database, seed_);
+      robot_ = std::make_unique<sim::SimulatedRobot>(*scene_.scene, config_.sensor, config_.robot, config_.navigation,
+                                                     seed_);
+      scanner_ = std::make_unique<scanning::Scanner>(config_, robot_.get(), *database_.database, seed_);
       evaluator_ = std::make_unique<eval::RunEvaluator>(*scene_.scene, config_,
                                                         std::vector<world::Category>(known.begin(), known.end()));
       eval::RunEvaluator* evaluator = evaluator_.get();
-      scanner_->set_frame_observer([evaluator](const sim::DepthFrame& frame, const mapping::FrameAssociation& association) {
+      scanner_->set_frame_observer([evaluator](const platform::DepthFrame& frame,
+                                               const mapping::FrameAssociation& association) {
         evaluator->ObserveFrame(frame, association);
       });
       scanner_->set_analysis_observer([evaluator](const scanning::Scanner& s) { evaluator->ObserveAnalysis(s); });
@@ -397,6 +401,7 @@ class Scan {
   PyDatabase database_;
   std::uint64_t seed_;
   scanning::SystemConfig config_;
+  std::unique_ptr<sim::SimulatedRobot> robot_;  // the platform the scanner drives
   std::unique_ptr<scanning::Scanner> scanner_;
   std::unique_ptr<eval::RunEvaluator> evaluator_;
   scanning::RunRecord record_;

@@ -16,7 +16,7 @@
 #include "objscan/io/ply.h"
 #include "objscan/io/png.h"
 #include "objscan/io/scene_spec.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 
 namespace objscan::app {
 namespace {
@@ -54,7 +54,7 @@ geometry::Aabb3 SceneExtent(const world::Scene& scene) {
 }
 
 // Throws InputError when the camera is outside the scene, inside an object or touching a surface.
-void CheckCameraPosition(const world::Scene& scene, const sim::DepthCamera& camera, const Eigen::Vector3d& p,
+void CheckCameraPosition(const world::Scene& scene, const render::DepthCamera& camera, const Eigen::Vector3d& p,
                          const std::string& pose_text) {
   const geometry::Aabb3 extent = SceneExtent(scene);
   const geometry::Aabb3 all = scene.Bounds();
@@ -67,14 +67,14 @@ void CheckCameraPosition(const world::Scene& scene, const sim::DepthCamera& came
                      std::to_string(extent.min_m.y()) + ".." + std::to_string(extent.max_m.y()) + ", z " +
                      std::to_string(all.min_m.z()) + ".." + std::to_string(all.max_m.z() + kHeadroomM) + ")");
   }
-  const sim::PointProbe probe = camera.raycaster().Probe(p);
+  const render::PointProbe probe = camera.raycaster().Probe(p);
   if (probe.inside || probe.clearance_m < kMinClearanceM) {
     // Name the object: the nearest one along a few axis directions.
     std::string what = "geometry";
     float nearest = std::numeric_limits<float>::infinity();
     for (int axis = 0; axis < 6; ++axis) {
       const Eigen::Vector3d d = (axis % 2 ? -1.0 : 1.0) * Eigen::Vector3d::Unit(axis / 2);
-      const sim::RayHit hit = camera.raycaster().CastRay(p, d);
+      const render::RayHit hit = camera.raycaster().CastRay(p, d);
       if (hit.Hit() && hit.distance < nearest) {
         nearest = hit.distance;
         const world::SceneObject* o = scene.Find(hit.instance_id);
@@ -104,10 +104,10 @@ int RunRender(const RenderArgs& args) {
   if (!args.category_map.empty()) load_options.category_map = args.category_map;
   const world::Scene scene = io::LoadScene(args.scene, load_options);
 
-  sim::SensorOptions sensor;
+  render::SensorOptions sensor;
   sensor.noise = args.noise == "on";
   sensor.threads = args.threads;
-  const sim::DepthCamera camera(scene, sensor);
+  const render::DepthCamera camera(scene, sensor);
   const Eigen::Vector3d position(pose.x, pose.y, pose.z);
   CheckCameraPosition(scene, camera, position, args.pose);
   if (std::abs(pose.pitch_deg) >= 90.0) {
@@ -118,7 +118,7 @@ int RunRender(const RenderArgs& args) {
 
   Rng rng(args.seed);
   const Stopwatch render_time;
-  const sim::DepthFrame frame = camera.Render(T_world_camera, &rng);
+  const platform::DepthFrame frame = camera.Render(T_world_camera, &rng);
   const double ms = render_time.ElapsedMs();
 
   const int w = frame.width(), h = frame.height();

@@ -32,6 +32,7 @@
 #include "objscan/scanning/scanner.h"
 #include "objscan/scanning/scene_limits.h"
 #include "objscan/scanning/system_config.h"
+#include "objscan/sim/simulated_robot.h"
 
 namespace objscan::app {
 namespace {
@@ -160,11 +161,13 @@ int RunScan(const RunArgs& args) {
                                      [](const auto& m) { return m.source.rfind("procedural/", 0) == 0; });
   if (!generated) TrainingDatabasePaths(config.recognition.classifier.extra_training_databases, !args.quiet);
 
-  scanning::Scanner scanner(config, scene, database, args.seed);
+  // The simulated robot, put down in the scene as an operator would; the scanner starts where it stands.
+  sim::SimulatedRobot robot(scene, config.sensor, config.robot, config.navigation, args.seed);
+  scanning::Scanner scanner(config, &robot, database, args.seed);
   eval::RunEvaluator evaluator(scene, config, std::vector<world::Category>(known.begin(), known.end()));
   std::unique_ptr<eval::FrameWriter> frames;
   if (args.save_frames) frames = std::make_unique<eval::FrameWriter>(args.out + "/frames");
-  scanner.set_frame_observer([&evaluator, &frames](const sim::DepthFrame& frame,
+  scanner.set_frame_observer([&evaluator, &frames](const platform::DepthFrame& frame,
                                                    const mapping::FrameAssociation& association) {
     evaluator.ObserveFrame(frame, association);
     if (frames) frames->Write(frame);

@@ -15,6 +15,7 @@
 #include "objscan/recognition/database_builder.h"
 #include "objscan/scanning/scanner.h"
 #include "objscan/scanning/system_config.h"
+#include "objscan/sim/simulated_robot.h"
 
 int main(int argc, char** argv) {
   using namespace objscan;
@@ -37,7 +38,9 @@ int main(int argc, char** argv) {
     options.vocabulary.num_words = 48;
     const recognition::ModelDatabase database = recognition::BuildDatabase(sources, options);
 
-    scanning::Scanner scanner(config, scene, database, /*seed=*/1);
+    // The simulated robot in the scene (objscan's simulator is one platform; a real robot is another).
+    sim::SimulatedRobot robot(scene, config.sensor, config.robot, config.navigation, /*seed=*/1);
+    scanning::Scanner scanner(config, &robot, database, /*seed=*/1);
     int steps = 0;
     while (steps < max_steps && scanner.Step()) ++steps;
     const scanning::RunRecord& record = scanner.record();

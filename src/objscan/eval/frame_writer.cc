@@ -22,7 +22,7 @@ FrameWriter::FrameWriter(const std::string& dir) : dir_(dir) {
   if (ec) throw InputError(dir + ": cannot create the frames folder (" + ec.message() + ")");
 }
 
-void FrameWriter::Write(const sim::DepthFrame& frame) {
+void FrameWriter::Write(const platform::DepthFrame& frame) {
   std::vector<std::uint16_t> depth(frame.depth_m.size(), 0);
   for (std::size_t i = 0; i < depth.size(); ++i) {
     const double d = static_cast<double>(frame.depth_m[i]) * kDepthScale;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "objscan/scanning/run_record.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 
 namespace objscan::eval {
 
@@ -20,7 +20,7 @@ class FrameWriter {
   explicit FrameWriter(const std::string& dir);
 
   // Writes one frame's depth image (atomically); keeps its pose and intrinsics for Finish.
-  void Write(const sim::DepthFrame& frame);
+  void Write(const platform::DepthFrame& frame);
   // Writes depth.txt, groundtruth.txt and intrinsics.json. Timestamps are the simulated times of the
   // run's views (trajectory.tum) when there is one view per frame, else the frame index.
   void Finish(const scanning::RunRecord& record) const;
@@ -30,7 +30,7 @@ class FrameWriter {
  private:
   std::string dir_;
   std::vector<geometry::Pose3> poses_;
-  sim::CameraIntrinsics intrinsics_;
+  platform::CameraIntrinsics intrinsics_;
 };
 
 }  // namespace objscan::eval

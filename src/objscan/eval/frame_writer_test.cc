@@ -25,8 +25,8 @@ std::vector<std::string> DataLines(const fs::path& path) {
   return lines;
 }
 
-sim::DepthFrame Frame(double yaw_rad, const Eigen::Vector3d& position, std::vector<float> depth_m) {
-  sim::DepthFrame f;
+platform::DepthFrame Frame(double yaw_rad, const Eigen::Vector3d& position, std::vector<float> depth_m) {
+  platform::DepthFrame f;
   f.intrinsics.width_px = 3;
   f.intrinsics.height_px = 2;
   f.intrinsics.fx_px = f.intrinsics.fy_px = 2.0;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "objscan/mapping/surface_map.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 
 namespace objscan::eval {
 
@@ -17,7 +17,7 @@ class GroundTruthVotes {
  public:
   // Votes every fused pixel's instance for its element, in pixel order (row-major). A frame without
   // a ground-truth channel votes nothing.
-  void Observe(const sim::DepthFrame& frame, const mapping::FrameAssociation& association);
+  void Observe(const platform::DepthFrame& frame, const mapping::FrameAssociation& association);
   // One vote (for tests and other feeders).
   void Vote(std::size_t element, std::int32_t instance);
 
@@ -32,7 +32,7 @@ class GroundTruthVotes {
   std::vector<std::uint16_t> count_;  // 2 per element
 };
 
-inline void GroundTruthVotes::Observe(const sim::DepthFrame& frame, const mapping::FrameAssociation& association) {
+inline void GroundTruthVotes::Observe(const platform::DepthFrame& frame, const mapping::FrameAssociation& association) {
   if (frame.gt_instance.size() != frame.depth_m.size() ||
       association.pixel_element.size() != frame.gt_instance.size()) {
     return;

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "objscan/mapping/surface_map.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 
 namespace objscan::eval {
 namespace {
@@ -21,7 +21,7 @@ TEST(GroundTruthVotesTest, MajorityOfVotesNamesTheInstance) {
 }
 
 TEST(GroundTruthVotesTest, ObservesFusedPixelsOnly) {
-  sim::DepthFrame frame;
+  platform::DepthFrame frame;
   frame.depth_m = {1.f, 1.f, 1.f, 1.f};
   frame.gt_instance = {4, 4, 5, 6};
   mapping::FrameAssociation association;

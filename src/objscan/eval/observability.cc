@@ -7,8 +7,8 @@
 
 #include "objscan/common/error.h"
 #include "objscan/eval/exposure.h"
-#include "objscan/sim/parallel_for.h"
-#include "objscan/sim/raycaster.h"
+#include "objscan/common/parallel_for.h"
+#include "objscan/render/raycaster.h"
 
 namespace objscan::eval {
 namespace {
@@ -47,7 +47,7 @@ void AddNormalLine(NormalLines* lines, const Eigen::Vector3f& normal, float area
   lines->push_back(area * n);
 }
 
-std::vector<char> ObservableVoxels(const sim::Raycaster& caster, const std::vector<Eigen::Vector3d>& centers_world,
+std::vector<char> ObservableVoxels(const render::Raycaster& caster, const std::vector<Eigen::Vector3d>& centers_world,
                                    const std::vector<NormalLines>& normal_lines, const ObservabilityOptions& options,
                                    const RoomAir* camera_air) {
   Validate(options);
@@ -55,7 +55,7 @@ std::vector<char> ObservableVoxels(const sim::Raycaster& caster, const std::vect
     throw InputError("ObservableVoxels: " + std::to_string(centers_world.size()) + " centres but " +
                      std::to_string(normal_lines.size()) + " normal line sets");
   }
-  const std::vector<Eigen::Vector3f> sphere = sim::FibonacciDirections(options.num_directions);
+  const std::vector<Eigen::Vector3f> sphere = render::FibonacciDirections(options.num_directions);
   const float min_cos = static_cast<float>(std::cos(options.max_incidence_deg * M_PI / 180.0));
   const double free_margin_m = 0.01;  // a camera is not on the surface it would stop at
   std::vector<char> observable(centers_world.size(), 0);
@@ -78,7 +78,7 @@ std::vector<char> ObservableVoxels(const sim::Raycaster& caster, const std::vect
     const Eigen::Vector3f origin = centers_world[i].cast<float>();
     constexpr std::size_t kPacket = 16;
     std::array<float, 3 * kPacket> directions;
-    std::array<sim::RayHit, kPacket> hits;
+    std::array<render::RayHit, kPacket> hits;
     for (std::size_t start = 0; start < order.size(); start += kPacket) {
       const std::size_t count = std::min(kPacket, order.size() - start);
       for (std::size_t k = 0; k < count; ++k) {
@@ -121,7 +121,7 @@ std::vector<char> ObservableVoxels(const sim::Raycaster& caster, const std::vect
 
   constexpr int kBlock = 256;
   const int blocks = static_cast<int>((centers_world.size() + kBlock - 1) / kBlock);
-  sim::ParallelForBlocks(blocks, options.threads, [&](int b) {
+  ParallelForBlocks(blocks, options.threads, [&](int b) {
     const std::size_t end = std::min(centers_world.size(), static_cast<std::size_t>(b + 1) * kBlock);
     for (std::size_t i = static_cast<std::size_t>(b) * kBlock; i < end; ++i) observable[i] = observe(i);
   });

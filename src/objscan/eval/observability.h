@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-namespace objscan::sim {
+namespace objscan::render {
 class Raycaster;
 }
 
@@ -48,7 +48,7 @@ using NormalLines = std::vector<Eigen::Vector3f>;
 // be (RoomAir::CameraCanBeAt: in the room's air, not outside behind a window; within the robot's
 // reach when restricted). Throws InputError on sizes that differ or bad
 // options.
-std::vector<char> ObservableVoxels(const sim::Raycaster& caster, const std::vector<Eigen::Vector3d>& centers_world,
+std::vector<char> ObservableVoxels(const render::Raycaster& caster, const std::vector<Eigen::Vector3d>& centers_world,
                                    const std::vector<NormalLines>& normal_lines, const ObservabilityOptions& options,
                                    const RoomAir* camera_air = nullptr);
 

@@ -4,7 +4,7 @@
 
 #include "objscan/common/error.h"
 #include "objscan/eval/exposure.h"
-#include "objscan/sim/raycaster.h"
+#include "objscan/render/raycaster.h"
 #include "objscan/sim/test_scenes.h"
 
 namespace objscan::eval {
@@ -39,7 +39,7 @@ world::Scene BoxBesideWall(double slit_m) {
 // g / cos(75) = 3.86 g before it meets the wall: under 0.5 m (min range) when g < 0.13 m.
 TEST(ObservableVoxels, AFaceInASlitBesideTheWallIsNotObservableItsFrontIs) {
   const world::Scene scene = BoxBesideWall(0.08);
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   const std::vector<Eigen::Vector3d> centers = {{0.08, 1.5, 0.3}, {0.68, 1.5, 0.3}, {0.38, 1.5, 0.6}};
   const std::vector<NormalLines> lines = {Line(-1, 0, 0), Line(1, 0, 0), Line(0, 0, 1)};
   const std::vector<char> observable = ObservableVoxels(caster, centers, lines, RobotCamera());
@@ -52,7 +52,7 @@ TEST(ObservableVoxels, AFaceInASlitBesideTheWallIsNotObservableItsFrontIs) {
 TEST(ObservableVoxels, AFaceThirtyCentimetresFromTheWallIsObservableObliquely) {
   // g = 0.3: a ray 60 degrees off the face's normal, upwards, runs 0.6 m before the wall.
   const world::Scene scene = BoxBesideWall(0.30);
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   const std::vector<char> observable = ObservableVoxels(caster, {{0.30, 1.5, 0.3}}, {Line(-1, 0, 0)}, RobotCamera());
   EXPECT_EQ(observable[0], 1);
 }
@@ -62,7 +62,7 @@ TEST(ObservableVoxels, RaysRunningInsideASolidDoNotCount) {
   // far side is beyond min range, but the first hit there is a back face.
   world::Scene scene = Room(3.0, 3.0);
   scene.Add(BoxObject({1.0, 1.0, 0.3}, {1.6, 1.6, 0.9}));
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   ObservabilityOptions o = RobotCamera();
   o.min_camera_z_m = -10.0;
   o.max_camera_z_m = 10.0;
@@ -73,7 +73,7 @@ TEST(ObservableVoxels, RaysRunningInsideASolidDoNotCount) {
 TEST(ObservableVoxels, TheTopOfAWardrobeAboveTheHighestCameraIsNotObservable) {
   world::Scene scene = Room(4.0, 4.0);
   scene.Add(BoxObject({1.5, 1.5, 0.0}, {2.1, 2.5, 2.2}));
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   const std::vector<Eigen::Vector3d> top = {{1.8, 2.0, 2.2}};
   EXPECT_EQ(ObservableVoxels(caster, top, {Line(0, 0, 1)}, RobotCamera())[0], 0);
   ObservabilityOptions any_height = RobotCamera();
@@ -84,7 +84,7 @@ TEST(ObservableVoxels, TheTopOfAWardrobeAboveTheHighestCameraIsNotObservable) {
   // climbs 0.13 m per 0.5 m).
   world::Scene low = Room(4.0, 4.0);
   low.Add(BoxObject({1.5, 1.5, 0.0}, {2.1, 2.5, 1.6}));
-  const sim::Raycaster low_caster(low.BuildTriangleSoup());
+  const render::Raycaster low_caster(low.BuildTriangleSoup());
   EXPECT_EQ(ObservableVoxels(low_caster, {{1.8, 2.0, 1.6}}, {Line(0, 0, 1)}, RobotCamera())[0], 1);
 }
 
@@ -93,7 +93,7 @@ TEST(ObservableVoxels, WithTheRoomsAirTheCameraMustBeInsideTheRoom) {
   world::Scene scene = Room(3.0, 3.0);
   scene.Add(BoxObject({3.3, 1.0, 0.5}, {3.6, 2.0, 1.5}));
   scene.Add(BoxObject({1.0, 1.0, 0.0}, {1.6, 1.6, 0.6}));
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   const RoomAir air(scene, 0.05, Eigen::Vector3d(0.5, 0.5, 1.0));
   const std::vector<Eigen::Vector3d> centers = {{3.6, 1.5, 1.0}, {1.6, 1.3, 0.3}};
   const std::vector<NormalLines> lines = {Line(1, 0, 0), Line(1, 0, 0)};
@@ -105,7 +105,7 @@ TEST(ObservableVoxels, OneOfSeveralOrientationsSuffices) {
   // A voxel in the slit holding the hidden face and a horizontal ledge: a camera above the slit
   // looks down on the ledge.
   const world::Scene scene = BoxBesideWall(0.08);
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   NormalLines both = {Eigen::Vector3f(-1, 0, 0)};
   EXPECT_EQ(ObservableVoxels(caster, {{0.08, 1.5, 0.3}}, {both}, RobotCamera())[0], 0);
   both.push_back(Eigen::Vector3f(0, 0, 1));
@@ -116,7 +116,7 @@ TEST(ObservableVoxels, OneOfSeveralOrientationsSuffices) {
 
 TEST(ObservableVoxels, ResultsDoNotDependOnTheThreadCount) {
   const world::Scene scene = BoxBesideWall(0.12);
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   std::vector<Eigen::Vector3d> centers;
   std::vector<NormalLines> lines;
   for (int i = 0; i < 600; ++i) {
@@ -134,7 +134,7 @@ TEST(ObservableVoxels, ResultsDoNotDependOnTheThreadCount) {
 
 TEST(ObservableVoxels, RejectsMismatchedSizesAndBadOptions) {
   const world::Scene scene = BoxBesideWall(0.3);
-  const sim::Raycaster caster(scene.BuildTriangleSoup());
+  const render::Raycaster caster(scene.BuildTriangleSoup());
   EXPECT_THROW(ObservableVoxels(caster, {{0.3, 1.5, 0.3}}, {}, RobotCamera()), InputError);
   ObservabilityOptions o = RobotCamera();
   o.max_incidence_deg = 0.0;

@@ -12,7 +12,7 @@
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/segmentation_quality.h"
-#include "objscan/sim/raycaster.h"
+#include "objscan/render/raycaster.h"
 
 namespace objscan::eval {
 namespace {
@@ -150,7 +150,7 @@ struct RunEvaluator::Impl {
     std::vector<Eigen::Vector3d> centers;
     centers.reserve(voxels->size());
     for (const auto& v : *voxels) centers.push_back(v.center_world);
-    const sim::Raycaster caster(scene.BuildTriangleSoup());
+    const render::Raycaster caster(scene.BuildTriangleSoup());
     const std::vector<char> observable = ObservableVoxels(caster, centers, lines, options, &air);
     for (std::size_t i = 0; i < voxels->size(); ++i) (*voxels)[i].observable = observable[i] != 0;
   }
@@ -258,7 +258,7 @@ int RunEvaluator::num_surface_voxels() const {
   return static_cast<int>(impl_->coverage ? impl_->coverage->voxels().size() : impl_->surface_voxels.size());
 }
 
-void RunEvaluator::ObserveFrame(const sim::DepthFrame& frame, const mapping::FrameAssociation& association) {
+void RunEvaluator::ObserveFrame(const platform::DepthFrame& frame, const mapping::FrameAssociation& association) {
   Impl& m = *impl_;
   m.votes.Observe(frame, association);
   if (!m.coverage) m.BuildExposedCoverage(frame.T_world_camera.translation());

@@ -13,7 +13,7 @@
 #include "objscan/eval/metrics.h"
 #include "objscan/scanning/run_record.h"
 #include "objscan/scanning/scanner.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 #include "objscan/world/scene.h"
 
 namespace objscan::eval {
@@ -89,7 +89,7 @@ class RunEvaluator {
   ~RunEvaluator();
 
   // Feeds one frame and where the map fused its pixels (call from the scanner's frame observer).
-  void ObserveFrame(const sim::DepthFrame& frame, const mapping::FrameAssociation& association);
+  void ObserveFrame(const platform::DepthFrame& frame, const mapping::FrameAssociation& association);
   // Scores the segmentation of one analysis (call from the scanner's analysis observer).
   void ObserveAnalysis(const scanning::Scanner& scanner);
 

@@ -17,9 +17,9 @@
 #include "objscan/mapping/occupancy_map.h"
 #include "objscan/mapping/planes.h"
 #include "objscan/mapping/surface_map.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
-#include "objscan/sim/navigator.h"
+#include "objscan/navigation/navigator.h"
 #include "shared_data.h"
 
 namespace objscan::mapping {
@@ -30,8 +30,8 @@ constexpr double kCameraHeightM = 1.2;
 constexpr double kRobotRadiusM = 0.2;
 constexpr double kRobotHeightM = 1.4;
 
-sim::SensorOptions HalfResolutionSensor() {
-  sim::SensorOptions sensor;
+render::SensorOptions HalfResolutionSensor() {
+  render::SensorOptions sensor;
   sensor.width_px = 320;
   sensor.height_px = 240;
   sensor.fx_px = sensor.fy_px = 262.5;
@@ -47,9 +47,9 @@ struct Mapper {
   StructureResult structure;
   int frames = 0;
 
-  void Observe(const sim::DepthCamera& camera, const Eigen::Vector3d& position, double yaw_rad, double pitch_deg,
+  void Observe(const render::DepthCamera& camera, const Eigen::Vector3d& position, double yaw_rad, double pitch_deg,
                Rng* rng) {
-    const sim::DepthFrame frame =
+    const platform::DepthFrame frame =
         camera.Render(geometry::CameraPoseFromYawPitch(position, yaw_rad, geometry::DegToRad(pitch_deg)), rng);
     surface.Integrate(frame);
     occupancy.Integrate(frame);
@@ -62,7 +62,7 @@ struct Mapper {
 };
 
 // Free positions of the robot's base on a regular grid over the room (ground-truth occupancy).
-std::vector<Eigen::Vector2d> FreeGridPositions(const sim::Navigator& navigator, const geometry::Aabb3& room,
+std::vector<Eigen::Vector2d> FreeGridPositions(const navigation::Navigator& navigator, const geometry::Aabb3& room,
                                                double spacing_m) {
   std::vector<Eigen::Vector2d> out;
   for (double y = room.min_m.y() + 0.5 * spacing_m; y < room.max_m.y(); y += spacing_m) {
@@ -153,9 +153,9 @@ TEST(OascMappingTest, FloorWallsAndFrontiersOfABedroom) {
   io::SceneLoadOptions load;
   load.model_path = data + "/gazebo-models";
   const world::Scene scene = io::LoadScene(data + kWorld, load);
-  const sim::DepthCamera camera(scene, HalfResolutionSensor());
+  const render::DepthCamera camera(scene, HalfResolutionSensor());
   const sim::GroundTruthOccupancy truth(scene);
-  const sim::Navigator navigator(truth, kRobotRadiusM, kRobotHeightM);
+  const navigation::Navigator navigator(truth, kRobotRadiusM, kRobotHeightM);
   const geometry::Aabb3 room = scene.StructureBounds(world::Category::kWall);
   ASSERT_FALSE(room.Empty());
 

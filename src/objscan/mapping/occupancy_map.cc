@@ -9,6 +9,10 @@
 #include "objscan/common/limits.h"
 
 namespace objscan::mapping {
+
+using navigation::CellState;
+using navigation::OccupancyGrid2D;
+
 namespace {
 
 // Cells [*first, *last] along one axis of a grid (origin `lo`, cell size `res`, `count` cells) that
@@ -62,11 +66,11 @@ OccupancyMap::OccupancyMap(const OccupancyMapOptions& options) : options_(option
 
 OccupancyMap::~OccupancyMap() = default;
 
-void OccupancyMap::Integrate(const sim::DepthFrame& frame) {
+void OccupancyMap::Integrate(const platform::DepthFrame& frame) {
   const int stride = options_.pixel_stride;
   const Eigen::Matrix3f R = frame.T_world_camera.rotation().cast<float>();
   const Eigen::Vector3f t = frame.T_world_camera.translation().cast<float>();
-  const sim::CameraIntrinsics& in = frame.intrinsics;
+  const platform::CameraIntrinsics& in = frame.intrinsics;
   std::vector<Eigen::Vector3f> end_points;
   end_points.reserve(static_cast<std::size_t>(frame.width() / stride + 1) * (frame.height() / stride + 1));
   // Offset the sample grid by half a stride so samples sit in the middle of their blocks.
@@ -165,21 +169,21 @@ std::size_t OccupancyMap::NumOccupied() const {
 
 geometry::Aabb3 OccupancyMap::KnownBounds() const { return impl_->known_box; }
 
-sim::OccupancyGrid2D OccupancyMap::Grid(double min_z_m, double max_z_m, double cell_size_m) const {
+OccupancyGrid2D OccupancyMap::Grid(double min_z_m, double max_z_m, double cell_size_m) const {
   return GridOver(KnownBounds(), min_z_m, max_z_m, cell_size_m);
 }
 
-sim::OccupancyGrid2D OccupancyMap::GridOver(const geometry::Aabb3& box, double min_z_m, double max_z_m,
+OccupancyGrid2D OccupancyMap::GridOver(const geometry::Aabb3& box, double min_z_m, double max_z_m,
                                             double cell_size_m) const {
   if (!(cell_size_m > 0.0)) throw InputError("OccupancyMap::Grid: cell_size_m must be positive");
   if (box.Empty()) {
-    return sim::OccupancyGrid2D::Covering(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), cell_size_m,
-                                          sim::CellState::kUnknown);
+    return OccupancyGrid2D::Covering(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), cell_size_m,
+                                          CellState::kUnknown);
   }
   // Cells aligned to multiples of the cell size, so they line up with the voxels.
   const Eigen::Vector2d min_xy = (box.min_m.head<2>() / cell_size_m).array().floor() * cell_size_m;
-  sim::OccupancyGrid2D grid =
-      sim::OccupancyGrid2D::Covering(min_xy, box.max_m.head<2>(), cell_size_m, sim::CellState::kUnknown);
+  OccupancyGrid2D grid =
+      OccupancyGrid2D::Covering(min_xy, box.max_m.head<2>(), cell_size_m, CellState::kUnknown);
   const double res = cell_size_m;
   const octomap::OcTree& tree = impl_->tree;
   const octomap::point3d bbx_min(grid.origin_m.x(), grid.origin_m.y(), min_z_m);
@@ -204,7 +208,7 @@ sim::OccupancyGrid2D OccupancyMap::GridOver(const geometry::Aabb3& box, double m
     }
   }
   for (std::size_t k = 0; k < grid.cells.size(); ++k) {
-    grid.cells[k] = occupied[k] ? sim::CellState::kOccupied : (known[k] ? sim::CellState::kFree : sim::CellState::kUnknown);
+    grid.cells[k] = occupied[k] ? CellState::kOccupied : (known[k] ? CellState::kFree : CellState::kUnknown);
   }
   return grid;
 }

@@ -9,8 +9,8 @@
 
 #include "objscan/common/config.h"
 #include "objscan/geometry/aabb.h"
-#include "objscan/sim/depth_frame.h"
-#include "objscan/sim/occupancy_source.h"
+#include "objscan/platform/depth_frame.h"
+#include "objscan/navigation/occupancy_source.h"
 
 namespace objscan::mapping {
 
@@ -78,7 +78,7 @@ struct OccupancySnapshot {
   }
 };
 
-class OccupancyMap : public sim::OccupancySource {
+class OccupancyMap : public navigation::OccupancySource {
  public:
   explicit OccupancyMap(const OccupancyMapOptions& options = OccupancyMapOptions());
   ~OccupancyMap() override;
@@ -86,7 +86,7 @@ class OccupancyMap : public sim::OccupancySource {
   OccupancyMap& operator=(const OccupancyMap&) = delete;
 
   // Inserts the rays of every pixel_stride-th valid pixel (free along the ray, occupied at the end).
-  void Integrate(const sim::DepthFrame& frame);
+  void Integrate(const platform::DepthFrame& frame);
   // Inserts rays from `origin` to world points (already subsampled).
   void InsertRays(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& end_points);
 
@@ -101,12 +101,12 @@ class OccupancyMap : public sim::OccupancySource {
   // Bounds of everything observed (free or occupied); empty before the first frame.
   geometry::Aabb3 KnownBounds() const;
 
-  // The navigation grid (sim::OccupancySource) over the known bounds: a cell is occupied when any
+  // The navigation grid (navigation::OccupancySource) over the known bounds: a cell is occupied when any
   // occupied voxel overlaps it within the height band (min_z_m, max_z_m) (e.g. floor + 5 cm to the
   // robot's height), unknown when no voxel of that band above it is known, else free.
-  sim::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override;
+  navigation::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override;
   // The same over the XY footprint of `bounds`.
-  sim::OccupancyGrid2D GridOver(const geometry::Aabb3& bounds, double min_z_m, double max_z_m,
+  navigation::OccupancyGrid2D GridOver(const geometry::Aabb3& bounds, double min_z_m, double max_z_m,
                                 double cell_size_m) const;
 
   // The voxels over `box` (grown to whole voxels); empty when the box is.

@@ -75,16 +75,16 @@ TEST(OccupancyMapTest, FreeOccupiedUnknownAndNavigationGrid) {
   EXPECT_FALSE(cautious.IsViewValid(Eigen::Vector3d(0, -0.5, 1.2)));
   EXPECT_TRUE(cautious.IsViewValid(Eigen::Vector3d(0, 0.2, 0.9)));
 
-  const sim::OccupancyGrid2D grid = occupancy.Grid(0.05, 1.5, 0.05);
+  const navigation::OccupancyGrid2D grid = occupancy.Grid(0.05, 1.5, 0.05);
   ASSERT_GT(grid.NumCells(), 0u);
   auto state = [&](double x, double y) {
     const Eigen::Vector2i c = grid.CellOf(Eigen::Vector2d(x, y));
     return grid.At(c.x(), c.y());
   };
-  EXPECT_EQ(state(0.0, 1.02), sim::CellState::kOccupied);  // the box's front face
-  EXPECT_EQ(state(0.0, 0.3), sim::CellState::kFree);
-  EXPECT_EQ(state(0.0, -1.3), sim::CellState::kUnknown);
-  EXPECT_GT(grid.Count(sim::CellState::kFree), 100u);
+  EXPECT_EQ(state(0.0, 1.02), navigation::CellState::kOccupied);  // the box's front face
+  EXPECT_EQ(state(0.0, 0.3), navigation::CellState::kFree);
+  EXPECT_EQ(state(0.0, -1.3), navigation::CellState::kUnknown);
+  EXPECT_GT(grid.Count(navigation::CellState::kFree), 100u);
 
   std::size_t occupied = 0;
   occupancy.ForEachOccupied([&](const Eigen::Vector3d& c, double size_m) {
@@ -160,13 +160,13 @@ TEST(OccupancyMapTest, FloorEndPointsClearSpaceButNeverBlock) {
     OccupancyMap occupancy(options);
     Rng rng(3);
     occupancy.Integrate(room.Render(View(Eigen::Vector3d(0, -0.5, 1.2), 90, -40), &rng, 0.004, 0.003));
-    const sim::OccupancyGrid2D grid = occupancy.Grid(0.02, 1.8, 0.05);
+    const navigation::OccupancyGrid2D grid = occupancy.Grid(0.02, 1.8, 0.05);
     *occupied = *free = 0;
     for (double y = -0.2; y < 0.9; y += 0.05) {
       for (double x = -0.6; x < 0.6; x += 0.05) {
         const Eigen::Vector2i c = grid.CellOf(Eigen::Vector2d(x, y));
-        *occupied += grid.At(c.x(), c.y()) == sim::CellState::kOccupied;
-        *free += grid.At(c.x(), c.y()) == sim::CellState::kFree;
+        *occupied += grid.At(c.x(), c.y()) == navigation::CellState::kOccupied;
+        *free += grid.At(c.x(), c.y()) == navigation::CellState::kFree;
       }
     }
     return grid;
@@ -176,12 +176,12 @@ TEST(OccupancyMapTest, FloorEndPointsClearSpaceButNeverBlock) {
   plain.floor_clearance_m = 0.0;
   floor_cells(plain, &occupied, &free);
   EXPECT_GT(occupied, 50u) << "plain OctoMap: the noisy floor itself is an obstacle";
-  const sim::OccupancyGrid2D grid = floor_cells(OccupancyMapOptions(), &occupied, &free);
+  const navigation::OccupancyGrid2D grid = floor_cells(OccupancyMapOptions(), &occupied, &free);
   EXPECT_EQ(occupied, 0u);
   EXPECT_GT(free, 300u);  // of 22 x 24 cells in front of the box
   // The box still blocks.
   const Eigen::Vector2i box = grid.CellOf(Eigen::Vector2d(0.0, 1.02));
-  EXPECT_EQ(grid.At(box.x(), box.y()), sim::CellState::kOccupied);
+  EXPECT_EQ(grid.At(box.x(), box.y()), navigation::CellState::kOccupied);
 }
 
 struct RoomScan {
@@ -194,13 +194,13 @@ struct RoomScan {
 // Half-resolution frames keep the test fast. Depth noise sigma(z) = sigma_base_m + sigma_quadratic * z^2.
 void Observe(const AnalyticWorld& room, const geometry::Pose3& T, Rng* rng, RoomScan* scan,
              double sigma_base_m = 0.001, double sigma_quadratic_per_m = 0.0015) {
-  sim::CameraIntrinsics half;
+  platform::CameraIntrinsics half;
   half.width_px = 320;
   half.height_px = 240;
   half.fx_px = half.fy_px = 262.5;
   half.cx_px = 159.5;
   half.cy_px = 119.5;
-  const sim::DepthFrame frame = room.Render(T, rng, sigma_base_m, sigma_quadratic_per_m, half);
+  const platform::DepthFrame frame = room.Render(T, rng, sigma_base_m, sigma_quadratic_per_m, half);
   FrameAssociation association;
   scan->surface.Integrate(frame, &association);
   scan->votes.Observe(frame, association);

@@ -117,7 +117,7 @@ std::int32_t SurfaceMap::Insert(const VoxelKey& key) {
   return index;
 }
 
-void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* association) {
+void SurfaceMap::Integrate(const platform::DepthFrame& frame, FrameAssociation* association) {
   if (frame.depth_m.size() != static_cast<std::size_t>(frame.width()) * frame.height()) {
     throw InputError("SurfaceMap::Integrate: depth_m has " + std::to_string(frame.depth_m.size()) +
                      " values for a " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
@@ -140,7 +140,7 @@ void SurfaceMap::Integrate(const sim::DepthFrame& frame, FrameAssociation* assoc
   const float cos_assoc_sq = cos_assoc * cos_assoc;
   const float assoc_base = static_cast<float>(options_.association_base_m);
   const float assoc_quad = static_cast<float>(options_.association_quadratic_per_m);
-  const sim::CameraIntrinsics& in = frame.intrinsics;
+  const platform::CameraIntrinsics& in = frame.intrinsics;
   const int stride = options_.pixel_stride;
 
   auto agrees = [&](std::int32_t idx, const Eigen::Vector3f& n) {

@@ -19,7 +19,7 @@
 #include "objscan/geometry/point_cloud.h"
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/mapping/vertex_normal_map.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 
 namespace objscan::mapping {
 
@@ -68,7 +68,7 @@ class SurfaceMap {
 
   // Fuses one posed frame. When `association` is given it receives the per-pixel element indices
   // (valid until the next Integrate/Remove).
-  void Integrate(const sim::DepthFrame& frame, FrameAssociation* association = nullptr);
+  void Integrate(const platform::DepthFrame& frame, FrameAssociation* association = nullptr);
 
   std::size_t size() const { return keys_.size(); }
   double voxel_size_m() const { return options_.voxel_size_m; }

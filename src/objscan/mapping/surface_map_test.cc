@@ -34,7 +34,7 @@ TEST(SurfaceMapTest, BoxFusedFromEightNoisyViewsIsOneAccurateLayer) {
   for (int k = 0; k < 8; ++k) {
     const double yaw = 2.0 * M_PI * k / 8.0 + 0.2;
     const Eigen::Vector3d eye(1.6 * std::cos(yaw), 1.6 * std::sin(yaw), 1.2);
-    const sim::DepthFrame frame = world.Render(LookAt(eye, Eigen::Vector3d(0, 0, 0.25)), &rng);
+    const platform::DepthFrame frame = world.Render(LookAt(eye, Eigen::Vector3d(0, 0, 0.25)), &rng);
     FrameAssociation association;
     map.Integrate(frame, &association);
     votes.Observe(frame, association);
@@ -136,7 +136,7 @@ TEST(SurfaceMapTest, RepeatedViewsDoNotGrowTheMap) {
 
 TEST(SurfaceMapTest, RejectsMalformedFrame) {
   SurfaceMap map;
-  sim::DepthFrame frame;
+  platform::DepthFrame frame;
   frame.depth_m.resize(10);
   EXPECT_THROW(map.Integrate(frame), InputError);
   SurfaceMapOptions bad;

@@ -70,7 +70,7 @@ void GuardedBoxColumns(const float* in, float* out, int w, int h, int radius, fl
 
 }  // namespace
 
-void ComputeVertexNormalMap(const sim::DepthFrame& frame, const NormalEstimationOptions& options,
+void ComputeVertexNormalMap(const platform::DepthFrame& frame, const NormalEstimationOptions& options,
                             VertexNormalMap* out) {
   const int w = frame.width();
   const int h = frame.height();
@@ -98,7 +98,7 @@ void ComputeVertexNormalMap(const sim::DepthFrame& frame, const NormalEstimation
     z_s.assign(depth, depth + n);
   }
 
-  const sim::CameraIntrinsics& in = frame.intrinsics;
+  const platform::CameraIntrinsics& in = frame.intrinsics;
   std::vector<float> ray_x(w), ray_y(h);
   for (int u = 0; u < w; ++u) ray_x[u] = static_cast<float>((u - in.cx_px) / in.fx_px);
   for (int v = 0; v < h; ++v) ray_y[v] = static_cast<float>((v - in.cy_px) / in.fy_px);

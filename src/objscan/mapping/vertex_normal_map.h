@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "objscan/common/config.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 
 namespace objscan::mapping {
 
@@ -55,7 +55,7 @@ struct VertexNormalMap {
 };
 
 // Computes `out` for `frame` (reuses out's storage).
-void ComputeVertexNormalMap(const sim::DepthFrame& frame, const NormalEstimationOptions& options,
+void ComputeVertexNormalMap(const platform::DepthFrame& frame, const NormalEstimationOptions& options,
                             VertexNormalMap* out);
 
 }  // namespace objscan::mapping

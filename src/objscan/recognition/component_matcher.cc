@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "objscan/sim/parallel_for.h"
+#include "objscan/common/parallel_for.h"
 
 namespace objscan::recognition {
 
@@ -57,7 +57,7 @@ void RecognizerComponentMatcher::DescribeMissing(const std::vector<std::vector<s
     }
   }
   std::vector<QueryDescription> described(missing.size());
-  sim::ParallelForBlocks(static_cast<int>(missing.size()), threads_,
+  ParallelForBlocks(static_cast<int>(missing.size()), threads_,
                          [&](int i) { described[i] = recognizer_.Describe(CloudOf(*missing[i])); });
   for (std::size_t i = 0; i < missing.size(); ++i) {
     descriptions_[missing[i]->label].description = std::make_shared<const QueryDescription>(std::move(described[i]));
@@ -161,7 +161,7 @@ std::vector<segmentation::MatchResult> RecognizerComponentMatcher::MatchBatch(
   if (!graph_) throw std::logic_error("RecognizerComponentMatcher: SetComponents was not called");
   if (recognizer_.options().compose_unions) DescribeMissing(queries);
   std::vector<segmentation::MatchResult> results(queries.size());
-  sim::ParallelForBlocks(static_cast<int>(queries.size()), threads_,
+  ParallelForBlocks(static_cast<int>(queries.size()), threads_,
                          [&](int i) { results[i] = MatchDescribed(queries[i], scope); });
   return results;
 }

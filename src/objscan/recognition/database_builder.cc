@@ -15,7 +15,7 @@
 #include "objscan/io/mesh_io.h"
 #include "objscan/io/sweethome3d.h"
 #include "objscan/recognition/keypoints.h"
-#include "objscan/sim/parallel_for.h"
+#include "objscan/common/parallel_for.h"
 #include "objscan/world/procedural/procedural.h"
 
 namespace objscan::recognition {
@@ -548,7 +548,7 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   options.Validate();
   const auto descriptor = MakeDescriptorExtractor(options.descriptor);
   const int n_models = static_cast<int>(sources.size());
-  const int workers = std::min(sim::ResolveThreadCount(options.threads), std::max(1, n_models));
+  const int workers = std::min(ResolveThreadCount(options.threads), std::max(1, n_models));
   VirtualScanOptions scan_options = options.scan;
   if (workers > 1) scan_options.sensor.threads = 1;  // parallel over models instead of image rows
 
@@ -556,7 +556,7 @@ ModelDatabase BuildDatabase(const std::vector<ModelSource>& sources, const Datab
   std::vector<ModelInfo> info(n_models);
   std::mutex progress_mutex;
   int done = 0;
-  sim::ParallelForBlocks(n_models, workers, [&](int m) {
+  ParallelForBlocks(n_models, workers, [&](int m) {
     const ModelSource& source = sources[m];
     info[m] = {source.category, source.name, source.source, source.support_heights_m, source.creator, source.license, {}};
     const geometry::TriangleMesh mesh = NormalizeModel(source.load_mesh(), TypicalHeight(source.category));
@@ -584,7 +584,7 @@ ModelDatabase BuildDatabaseFromScans(const std::vector<ScannedModel>& models, co
   const int n_models = static_cast<int>(models.size());
   std::vector<PendingModel> pending(n_models);
   std::vector<ModelInfo> info(n_models);
-  sim::ParallelForBlocks(n_models, options.threads, [&](int m) {
+  ParallelForBlocks(n_models, options.threads, [&](int m) {
     info[m] = {models[m].category, models[m].name, models[m].source, models[m].support_heights_m, {}, {}, {}};
     pending[m] = DescribeScan(models[m].scan, models[m].category, models[m].name, m, options, *descriptor);
   });

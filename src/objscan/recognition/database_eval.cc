@@ -10,7 +10,7 @@
 #include "objscan/common/rng.h"
 #include "objscan/common/timer.h"
 #include "objscan/recognition/database_builder.h"
-#include "objscan/sim/parallel_for.h"
+#include "objscan/common/parallel_for.h"
 #include "objscan/world/procedural/procedural.h"
 
 namespace objscan::recognition {
@@ -124,7 +124,7 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
     recognizer.classifier();  // trained once, before the queries
     out.classifier_train_s = train.ElapsedMs() / 1000.0;
   }
-  const int workers = sim::ResolveThreadCount(options.threads);
+  const int workers = ResolveThreadCount(options.threads);
   VirtualScanOptions scan = options.scan;
   if (workers > 1) scan.sensor.threads = 1;
 
@@ -168,7 +168,7 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
   std::vector<TaskResult> results(n_total);
   std::mutex progress_mutex;
   int done = 0;
-  sim::ParallelForBlocks(n_total, workers, [&](int t) {
+  ParallelForBlocks(n_total, workers, [&](int t) {
     Rng rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(t)));
     TaskResult& r = results[t];
     if (t < n_tasks) {

@@ -66,14 +66,14 @@ ModelScan ScanModel(const geometry::TriangleMesh& mesh, const std::vector<geomet
   object.name = "model";
   object.mesh = mesh;
   scene.Add(std::move(object));
-  sim::SensorOptions sensor = options.sensor;
+  render::SensorOptions sensor = options.sensor;
   sensor.noise = noise;
-  const sim::DepthCamera camera(scene, sensor);
+  const render::DepthCamera camera(scene, sensor);
   mapping::SurfaceMap map(options.map);
   segmentation::IncrementalSegmenter segmenter(options.segmenter);
   mapping::FrameAssociation association;
   for (const auto& T_world_camera : views) {
-    const sim::DepthFrame frame = camera.Render(T_world_camera, noise ? rng : nullptr);
+    const platform::DepthFrame frame = camera.Render(T_world_camera, noise ? rng : nullptr);
     map.Integrate(frame, &association);
     segmenter.Update(frame, association, &map);
   }

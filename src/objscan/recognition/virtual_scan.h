@@ -1,6 +1,6 @@
 #pragma once
 // Virtual scanning of a single model (database building and evaluation): the model alone in an
-// empty scene, rendered by sim::DepthCamera from views around it, fused into a mapping::SurfaceMap
+// empty scene, rendered by render::DepthCamera from views around it, fused into a mapping::SurfaceMap
 // and pre-segmented by the live system's segmentation::IncrementalSegmenter.
 #include <vector>
 
@@ -12,7 +12,7 @@
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/component_graph.h"
 #include "objscan/segmentation/incremental_segmenter.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 
 namespace objscan::recognition {
 
@@ -25,7 +25,7 @@ struct VirtualScanOptions {
   // the vertical field of view; clamped into the sensor's range.
   double distance_per_diagonal = 1.15;
   double distance_margin_m = 0.4;
-  sim::SensorOptions sensor;  // the live sensor; `noise` is overridden per use (see below)
+  render::SensorOptions sensor;  // the live sensor; `noise` is overridden per use (see below)
   mapping::SurfaceMapOptions map;
   // Clean model scans: adjacent pairs only where parts touch (2-voxel cells), so the database does not
   // change with the live system's adjacency. With its 3-voxel cells here too, 15 procedural rooms

@@ -46,9 +46,9 @@
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/segmentation/segmentation_quality.h"
 #include "objscan/eval/ground_truth_votes.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
-#include "objscan/sim/navigator.h"
+#include "objscan/navigation/navigator.h"
 #include "objscan/world/procedural/procedural.h"
 
 namespace objscan::scanning {
@@ -105,7 +105,7 @@ struct ScannedRoom {
 // the centre pitched steeply down (the near furniture tops and the floor around it).
 std::vector<geometry::Pose3> RingViews(const world::Scene& scene) {
   const sim::GroundTruthOccupancy truth(scene);
-  const sim::Navigator navigator(truth, kRobotRadiusM, kRobotHeightM);
+  const navigation::Navigator navigator(truth, kRobotRadiusM, kRobotHeightM);
   const geometry::Aabb3 room = scene.StructureBounds(world::Category::kWall);
   const Eigen::Vector2d centre = room.Center().head<2>();
   const double radius = 0.25 * std::min(room.Size().x(), room.Size().y());
@@ -135,12 +135,12 @@ std::unique_ptr<ScannedRoom> ScanRoom(const std::string& category, std::uint64_t
   for (const world::SceneObject& o : room->scene.objects()) {
     if (o.IsStructural()) room->structural_instances.insert(o.instance_id);
   }
-  const sim::DepthCamera camera(room->scene, sim::SensorOptions());
+  const render::DepthCamera camera(room->scene, render::SensorOptions());
   const mapping::StructureDetector detector;
   Rng rng(DeriveSeed(seed, 0x5057));
   mapping::FrameAssociation association;
   for (const geometry::Pose3& T : RingViews(room->scene)) {
-    const sim::DepthFrame frame = camera.Render(T, &rng);
+    const platform::DepthFrame frame = camera.Render(T, &rng);
     room->map.Integrate(frame, &association);
     room->votes.Observe(frame, association);
     room->segmenter.Update(frame, association, &room->map);

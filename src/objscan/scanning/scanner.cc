@@ -7,13 +7,13 @@
 #include <unordered_map>
 
 #include "objscan/common/error.h"
-#include "objscan/common/rng.h"
 #include "objscan/common/timer.h"
 #include "objscan/io/png.h"
 #include "objscan/mapping/frontiers.h"
 #include "objscan/mapping/occupancy_map.h"
 #include "objscan/mapping/planes.h"
 #include "objscan/mapping/surface_map.h"
+#include "objscan/navigation/navigator.h"
 #include "objscan/planning/exploration.h"
 #include "objscan/planning/next_best_object.h"
 #include "objscan/planning/next_best_view.h"
@@ -24,10 +24,6 @@
 #include "objscan/scanning/report/report_rules.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
-#include "objscan/sim/depth_camera.h"
-#include "objscan/sim/ground_truth_occupancy.h"
-#include "objscan/sim/navigator.h"
-#include "objscan/sim/robot.h"
 
 namespace objscan::scanning {
 
@@ -45,14 +41,14 @@ namespace {
 
 // The robot's own map as the navigator sees it, plus the cells its body has occupied: wherever the
 // robot stood is free floor, even when the camera never saw it (it is below the field of view).
-class RobotOccupancy : public sim::OccupancySource {
+class RobotOccupancy : public navigation::OccupancySource {
  public:
   // `radius_m`: the disk around each visited position known to be free. It must exceed the
   // navigator's inflation radius, or the robot's own position would count as blocked.
   RobotOccupancy(const mapping::OccupancyMap& map, const std::vector<Eigen::Vector2d>& visited, double radius_m)
       : map_(map), visited_(visited), radius_m_(radius_m) {}
-  sim::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override {
-    sim::OccupancyGrid2D grid;
+  navigation::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override {
+    navigation::OccupancyGrid2D grid;
     geometry::Aabb3 bounds = map_.KnownBounds();
     for (const auto& v : visited_) {
       bounds.Extend(Eigen::Vector3d(v.x() - 1.0, v.y() - 1.0, 0.0));
@@ -68,7 +64,7 @@ class RobotOccupancy : public sim::OccupancySource {
           if (!grid.Contains(c.x() + dx, c.y() + dy)) continue;
           if ((grid.CellCenter(c.x() + dx, c.y() + dy) - v).norm() > radius_m_ + 0.5 * cell_size_m) continue;
           auto& cell = grid.cells[grid.Index(c.x() + dx, c.y() + dy)];
-          if (cell == sim::CellState::kUnknown) cell = sim::CellState::kFree;
+          if (cell == navigation::CellState::kUnknown) cell = navigation::CellState::kFree;
         }
       }
     }
@@ -84,11 +80,12 @@ class RobotOccupancy : public sim::OccupancySource {
 // NBV candidate validity with the robot's own occupancy map and navigator.
 class MapViewValidator : public planning::ViewValidator {
  public:
-  MapViewValidator(const mapping::OccupancyMap& occupancy, const sim::Robot& robot, const sim::Navigator& navigator,
+  MapViewValidator(const mapping::OccupancyMap& occupancy, const platform::Platform& platform,
+                   const navigation::Navigator& navigator,
                    double skip_m, std::vector<geometry::Pose3> earlier_views, double min_separation_m,
                    double min_separation_deg)
       : occupancy_(occupancy),
-        robot_(robot),
+        platform_(platform),
         navigator_(navigator),
         skip_m_(skip_m),
         earlier_views_(std::move(earlier_views)),
@@ -117,14 +114,16 @@ class MapViewValidator : public planning::ViewValidator {
         return planning::ViewValidity::kLineOfSightBlocked;
       }
     }
-    if (!robot_.PlanTo(T_world_camera, navigator_).ok()) return planning::ViewValidity::kUnreachable;
+    if (platform_.CheckReach(T_world_camera, navigator_) != platform::ReachStatus::kOk) {
+      return planning::ViewValidity::kUnreachable;
+    }
     return planning::ViewValidity::kValid;
   }
 
  private:
   const mapping::OccupancyMap& occupancy_;
-  const sim::Robot& robot_;
-  const sim::Navigator& navigator_;
+  const platform::Platform& platform_;
+  const navigation::Navigator& navigator_;
   double skip_m_;
   std::vector<geometry::Pose3> earlier_views_;
   double min_separation_m_;
@@ -138,63 +137,13 @@ struct CompletedObject {
   std::vector<std::int32_t> labels;
 };
 
-sim::BasePose ChooseStart(const world::Scene& scene, const sim::RobotOptions& robot_options,
-                          const sim::NavigatorOptions& nav_options) {
-  // The operator puts the robot down on free floor: the free spot farthest from obstacles, nearest the
-  // room's centre on ties. (Ground truth is used for this placement only.)
-  sim::GroundTruthOccupancy truth(scene);
-  sim::Navigator nav(truth, robot_options.base_radius_m, robot_options.height_m, nav_options);
-  const auto& grid = nav.grid();
-  const auto& blocked = nav.blocked();
-  std::vector<double> clearance(grid.NumCells(), 0.0);
-  // Chamfer distance to the nearest blocked cell (two passes).
-  const double inf = 1e9, c1 = grid.cell_size_m, c2 = grid.cell_size_m * std::sqrt(2.0);
-  for (std::size_t i = 0; i < clearance.size(); ++i) clearance[i] = blocked[i] ? 0.0 : inf;
-  auto relax = [&](int x, int y, int nx, int ny, double w) {
-    if (!grid.Contains(nx, ny)) {
-      clearance[grid.Index(x, y)] = std::min(clearance[grid.Index(x, y)], w);
-      return;
-    }
-    clearance[grid.Index(x, y)] = std::min(clearance[grid.Index(x, y)], clearance[grid.Index(nx, ny)] + w);
-  };
-  for (int y = 0; y < grid.height; ++y)
-    for (int x = 0; x < grid.width; ++x) {
-      relax(x, y, x - 1, y, c1), relax(x, y, x, y - 1, c1), relax(x, y, x - 1, y - 1, c2), relax(x, y, x + 1, y - 1, c2);
-    }
-  for (int y = grid.height - 1; y >= 0; --y)
-    for (int x = grid.width - 1; x >= 0; --x) {
-      relax(x, y, x + 1, y, c1), relax(x, y, x, y + 1, c1), relax(x, y, x + 1, y + 1, c2), relax(x, y, x - 1, y + 1, c2);
-    }
-  const Eigen::Vector3d center = scene.FurnitureBounds().Empty() ? scene.Bounds().Center() : scene.FurnitureBounds().Center();
-  double best = -1.0;
-  sim::BasePose start;
-  for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      const std::size_t i = grid.Index(x, y);
-      if (blocked[i]) continue;
-      const Eigen::Vector2d xy = grid.CellCenter(x, y);
-      // Quantise clearance so that the tie-break towards the centre matters.
-      const double score = std::floor(std::min(clearance[i], 1.0) / 0.1) - 1e-3 * (xy - center.head<2>()).norm();
-      if (score > best) {
-        best = score;
-        start.xy_m = xy;
-        start.theta_rad = std::atan2(center.y() - xy.y(), center.x() - xy.x());
-      }
-    }
-  }
-  if (best < 0.0) throw InputError("scene '" + scene.name() + "': no free floor for the robot to start on");
-  return start;
-}
-
 }  // namespace
 
 struct Scanner::State {
-  State(const SystemConfig& c, const world::Scene& s, const recognition::ModelDatabase& db, std::uint64_t seed)
+  State(const SystemConfig& c, platform::Platform* p, const recognition::ModelDatabase& db, std::uint64_t seed)
       : config(c),
-        scene(s),
         database(db),
-        rng(DeriveSeed(seed, 0x5343414eull)),
-        camera(s, c.sensor),
+        platform(*p),
         surface(c.surface_map),
         occupancy(c.occupancy),
         segmenter(c.presegmentation),
@@ -204,20 +153,21 @@ struct Scanner::State {
         post_segmenter(c.postsegmentation, &matcher),
         nbv(c.nbv),
         coverage_nbv(CoverageNbvOptions(c)),
-        robot(c.robot, ChooseStart(s, c.robot, c.navigation)),
-        visited(1, robot.base().xy_m),
+        visited(1, platform.base().xy_m),
         robot_occupancy(occupancy, visited, c.robot.base_radius_m + c.scanner.known_free_margin_m),
         navigator(robot_occupancy, c.robot.base_radius_m, c.robot.height_m, c.navigation) {
     record.seed = seed;
-    record.scene = s.name();
-    frustum = planning::CameraFrustum::FromPinhole(c.sensor.width_px, c.sensor.height_px, c.sensor.fx_px,
-                                                   c.sensor.fy_px, c.sensor.min_range_m, c.sensor.max_range_m);
+    record.scene = platform.world_name();
+    const platform::CameraIntrinsics k = platform.intrinsics();
+    frustum =
+        planning::CameraFrustum::FromPinhole(k.width_px, k.height_px, k.fx_px, k.fy_px, k.min_range_m, k.max_range_m);
   }
 
   // --- sensing ---------------------------------------------------------------------------------
-  void TakeView(const geometry::Pose3& T_world_camera, StepRecord* step) {
+  // A frame from where the camera is now, fused into the maps.
+  void TakeView(StepRecord* step) {
     Stopwatch w;
-    const sim::DepthFrame frame = camera.Render(T_world_camera, &rng);
+    const platform::DepthFrame frame = platform.Capture();
     Charge(step, &StageTimes::sense, w.ElapsedMs());
     w.Restart();
     mapping::FrameAssociation association;
@@ -230,7 +180,7 @@ struct Scanner::State {
     if (observer) observer(frame, association);
     ++step->views;
     ++record.views;
-    step->T_world_camera = T_world_camera;
+    step->T_world_camera = frame.T_world_camera;
     AddTrajectorySample(step->index, true);
     map_changed = true;
   }
@@ -239,11 +189,12 @@ struct Scanner::State {
 
   void AddTrajectorySample(int step_index, bool view) {
     TrajectorySample s;
-    s.time_s = robot.travel().time_s;
-    s.x_m = robot.base().xy_m.x();
-    s.y_m = robot.base().xy_m.y();
-    s.theta_rad = robot.base().theta_rad;
-    s.T_world_camera = robot.CameraPose();
+    const platform::BasePose base = platform.base();
+    s.time_s = platform.travel().time_s;
+    s.x_m = base.xy_m.x();
+    s.y_m = base.xy_m.y();
+    s.theta_rad = base.theta_rad;
+    s.T_world_camera = platform.T_world_camera();
     s.view = view;
     s.step = step_index;
     record.trajectory.push_back(s);
@@ -251,7 +202,7 @@ struct Scanner::State {
 
   // The inner waypoints of a driven path as trajectory samples (no view), so the path drawn and
   // written is the one driven; time spread along the path by length, heading along each segment.
-  void AddPathSamples(const sim::Path2D& path, double camera_z_m, double start_s, double end_s, int step_index) {
+  void AddPathSamples(const navigation::Path2D& path, double camera_z_m, double start_s, double end_s, int step_index) {
     const auto& w = path.waypoints;
     if (w.size() < 3 || !(path.length_m > 0.0)) return;
     double along_m = 0.0;
@@ -271,54 +222,40 @@ struct Scanner::State {
     }
   }
 
-  // Moves the robot so its camera takes T (already checked reachable when `plan` is given).
-  // `why` (optional) receives the reach status when the move is impossible.
-  bool MoveCamera(const geometry::Pose3& T_world_camera, StepRecord* step, sim::ReachStatus* why = nullptr) {
-    const double before_m = robot.travel().distance_m;
-    const double before_s = robot.travel().time_s;
-    sim::ReachPlan plan = robot.PlanTo(T_world_camera, navigator);
-    if (why) *why = plan.status;
-    if (!plan.ok()) return false;
-    const geometry::Pose3 T_before = robot.CameraPose();
-    robot.Execute(plan);
-    for (const auto& w : plan.path.waypoints) visited.push_back(w);
-    visited.push_back(robot.base().xy_m);
-    AddPathSamples(plan.path, T_before.translation().z(), before_s, robot.travel().time_s, step->index);
-    step->travel_m += robot.travel().distance_m - before_m;
-    step->timing_ms.navigate_sim += 1e3 * (robot.travel().time_s - before_s);
-    TakeView(plan.T_world_camera, step);
+  // Moves the robot so its camera takes T_world_camera, the base driving on the navigator's map, and
+  // takes a view there. `why` (optional) receives the reach status when the move is impossible.
+  bool MoveCamera(const geometry::Pose3& T_world_camera, StepRecord* step, platform::ReachStatus* why = nullptr) {
+    const platform::TravelStats before = platform.travel();
+    const double camera_z_before_m = platform.T_world_camera().translation().z();
+    const platform::Move move = platform.MoveCamera(T_world_camera, navigator);
+    if (why) *why = move.status;
+    if (!move.ok()) return false;
+    for (const auto& w : move.path.waypoints) visited.push_back(w);
+    visited.push_back(platform.base().xy_m);
+    const platform::TravelStats after = platform.travel();
+    AddPathSamples(move.path, camera_z_before_m, before.time_s, after.time_s, step->index);
+    step->travel_m += after.distance_m - before.distance_m;
+    step->timing_ms.navigate_sim += 1e3 * (after.time_s - before.time_s);
+    TakeView(step);
     return true;
   }
 
-  // Turning in place (arm yaw and pitch only): no navigation needed, so it works before any map.
+  // Turning the camera in place: no navigation needed, so it works before any map.
   void TurnInPlaceView(const geometry::Pose3& T_world_camera, StepRecord* step) {
-    sim::ReachPlan plan;
-    plan.status = sim::ReachStatus::kOk;
-    plan.base = robot.base();
-    double yaw = 0.0, pitch = 0.0;
-    geometry::YawPitchOfCamera(T_world_camera, &yaw, &pitch);
-    plan.arm = robot.arm();
-    plan.arm.camera_offset_base_m.setZero();
-    plan.arm.camera_height_m = T_world_camera.translation().z();
-    plan.arm.yaw_rel_rad = geometry::WrapAngle(yaw - plan.base.theta_rad);
-    plan.arm.pitch_rad = pitch;
-    plan.T_world_camera = sim::Robot::CameraPoseOf(plan.base, plan.arm);
-    plan.path.status = sim::PlanStatus::kReached;
-    plan.path.waypoints = {robot.base().xy_m};
-    plan.time_s = config.robot.arm_move_s;
-    const double before_s = robot.travel().time_s;
-    robot.Execute(plan);
-    step->timing_ms.navigate_sim += 1e3 * (robot.travel().time_s - before_s);
-    TakeView(plan.T_world_camera, step);
+    const double before_s = platform.travel().time_s;
+    platform.TurnCamera(T_world_camera);
+    step->timing_ms.navigate_sim += 1e3 * (platform.travel().time_s - before_s);
+    TakeView(step);
   }
 
   // The look-around of the exploration options, turning in place where the robot stands.
   void LookAroundInPlace(StepRecord* step) {
     step->action = "frontier";
     step->look_around = true;
-    const Eigen::Vector2d xy = robot.base().xy_m;
-    for (const auto& T : planning::LookAroundViews(Eigen::Vector3d(xy.x(), xy.y(), config.scanner.start_camera_height_m),
-                                                   robot.base().theta_rad, config.exploration)) {
+    const platform::BasePose base = platform.base();
+    for (const auto& T : planning::LookAroundViews(
+             Eigen::Vector3d(base.xy_m.x(), base.xy_m.y(), config.scanner.start_camera_height_m), base.theta_rad,
+             config.exploration)) {
       TurnInPlaceView(T, step);
     }
   }
@@ -505,7 +442,8 @@ struct Scanner::State {
 
   // --- one step ------------------------------------------------------------------------------------
   bool ScanObjectStep(StepRecord* step) {
-    const planning::RobotView view{robot.CameraPose().translation(), robot.CameraPose().linear().col(2)};
+    const geometry::Pose3 T_world_camera = platform.T_world_camera();
+    const planning::RobotView view{T_world_camera.translation(), T_world_camera.linear().col(2)};
     while (true) {
       std::vector<planning::NboObject> candidates;
       std::vector<int> candidate_object;  // index into post.objects
@@ -598,11 +536,11 @@ struct Scanner::State {
       input.occluder_points_world = &Occluders();
       input.frustum = frustum;
       input.has_camera_position = true;
-      input.camera_position_world = robot.CameraPose().translation();
+      input.camera_position_world = platform.T_world_camera().translation();
       const double radius = 0.5 * bounds.Diagonal();
       std::vector<geometry::Pose3> earlier = views_of[nbo.chosen_id];
-      earlier.push_back(robot.CameraPose());
-      MapViewValidator validator(occupancy, robot, navigator, std::max(config.scanner.line_of_sight_skip_m, radius),
+      earlier.push_back(platform.T_world_camera());
+      MapViewValidator validator(occupancy, platform, navigator, std::max(config.scanner.line_of_sight_skip_m, radius),
                                  earlier, config.scanner.min_view_separation_m, config.scanner.min_view_separation_deg);
       const planning::NextBestViewResult result = nbv.Plan(input, &validator);
       Charge(step, &StageTimes::nbv, w.ElapsedMs());
@@ -638,7 +576,7 @@ struct Scanner::State {
       history[static_cast<std::size_t>(views_spent[id])] = gamma.objectness;
       ++views_spent[id];
       for (auto l : gamma.component_ids) ++label_views[l];
-      views_of[id].push_back(robot.CameraPose());
+      views_of[id].push_back(platform.T_world_camera());
       ++record.nbv_views;
       return true;
     }
@@ -678,7 +616,7 @@ struct Scanner::State {
       consider(r.component_ids.front(), best, best != nullptr ? best->objectness : 0.0);
     }
     // Nearest first (ties by id, so the order does not depend on container order).
-    const Eigen::Vector2d here = robot.base().xy_m;
+    const Eigen::Vector2d here = platform.base().xy_m;
     std::sort(targets.begin(), targets.end(), [&](const Target& a, const Target& b) {
       const double da = (a.center_world.head<2>() - here).norm(), db = (b.center_world.head<2>() - here).norm();
       return da != db ? da < db : a.id < b.id;
@@ -705,7 +643,7 @@ struct Scanner::State {
       input.occluder_points_world = &map_points;
       input.frustum = frustum;
       input.has_camera_position = true;
-      input.camera_position_world = robot.CameraPose().translation();
+      input.camera_position_world = platform.T_world_camera().translation();
       input.gain_measure = planning::ViewGainMeasure::kUnobservedSurface;
       // The model surface still unseen, leaving out what lies against a wall (no view reaches it).
       std::vector<Eigen::Vector3f> aim;
@@ -717,8 +655,8 @@ struct Scanner::State {
         input.aim_points_world = &aim;
       }
       std::vector<geometry::Pose3> earlier = views_of[t.id];
-      earlier.push_back(robot.CameraPose());
-      MapViewValidator validator(occupancy, robot, navigator,
+      earlier.push_back(platform.T_world_camera());
+      MapViewValidator validator(occupancy, platform, navigator,
                                  std::max(config.scanner.line_of_sight_skip_m, 0.5 * box.Diagonal()), earlier,
                                  config.scanner.min_view_separation_m, config.scanner.min_view_separation_deg);
       const planning::NextBestViewResult result = coverage_nbv.Plan(input, &validator);
@@ -738,7 +676,7 @@ struct Scanner::State {
       for (const auto& c : result.candidates) {
         step->nbv_candidates.push_back({c.T_world_camera, planning::ToString(c.validity), c.gain.gain});
       }
-      views_of[t.id].push_back(robot.CameraPose());
+      views_of[t.id].push_back(platform.T_world_camera());
       ++record.coverage_views;
       return true;
     }
@@ -754,11 +692,11 @@ struct Scanner::State {
     for (const auto& g : goals) {
       frontiers.push_back({Eigen::Vector3d(g.centroid_m.x(), g.centroid_m.y(), 0.0), g.size_cells});
     }
-    const Eigen::Vector2d from = robot.base().xy_m;
+    const Eigen::Vector2d from = platform.base().xy_m;
     auto path_length = [&](const Eigen::Vector3d& goal) -> std::optional<double> {
       Eigen::Vector2d free_xy;
       if (!navigator.NearestFree(goal.head<2>(), config.scanner.frontier_max_snap_m, &free_xy)) return std::nullopt;
-      const sim::Path2D path = navigator.Plan(from, free_xy);
+      const navigation::Path2D path = navigator.Plan(from, free_xy);
       if (!path.ok()) return std::nullopt;
       return path.length_m;
     };
@@ -784,10 +722,10 @@ struct Scanner::State {
     bool moved = false;
     for (const auto& T : views) {
       if (!moved) {
-        sim::ReachStatus why = sim::ReachStatus::kOk;
+        platform::ReachStatus why = platform::ReachStatus::kOk;
         moved = MoveCamera(T, step, &why);
         if (!moved) {
-          step->notes.push_back(std::string("frontier view not reachable (") + sim::ReachStatusName(why) + ")");
+          step->notes.push_back(std::string("frontier view not reachable (") + platform::ReachStatusName(why) + ")");
           break;
         }
       } else {
@@ -801,10 +739,11 @@ struct Scanner::State {
   // The explored area and the step budget it gives (ScannerOptions::steps_per_explored_m2).
   void UpdateStepBudget() {
     RefreshNavigation();
-    const sim::OccupancyGrid2D& grid = navigator.grid();
+    const navigation::OccupancyGrid2D& grid = navigator.grid();
     const double cell_m2 = grid.cell_size_m * grid.cell_size_m;
     record.explored_area_m2 =
-        cell_m2 * static_cast<double>(grid.Count(sim::CellState::kFree) + grid.Count(sim::CellState::kOccupied));
+        cell_m2 *
+        static_cast<double>(grid.Count(navigation::CellState::kFree) + grid.Count(navigation::CellState::kOccupied));
     const ScannerOptions& o = config.scanner;
     const double by_area = std::min(1e9, std::ceil(o.steps_per_explored_m2 * record.explored_area_m2));
     record.step_budget = std::min(o.max_steps, std::max(o.step_budget, static_cast<int>(by_area)));
@@ -957,10 +896,8 @@ struct Scanner::State {
   }
 
   const SystemConfig config;
-  const world::Scene& scene;
   const recognition::ModelDatabase& database;
-  Rng rng;
-  sim::DepthCamera camera;
+  platform::Platform& platform;  // the robot: where it is, its frames and its moves
   mapping::SurfaceMap surface;
   mapping::OccupancyMap occupancy;
   segmentation::IncrementalSegmenter segmenter;
@@ -974,10 +911,9 @@ struct Scanner::State {
   planning::NextBestView nbv;
   planning::NextBestView coverage_nbv;  // the NBV planner with the coverage views' candidate rings
   planning::CameraFrustum frustum;
-  sim::Robot robot;
-  std::vector<Eigen::Vector2d> visited;
+  std::vector<Eigen::Vector2d> visited;  // where the base has stood (free floor)
   RobotOccupancy robot_occupancy;
-  sim::Navigator navigator;
+  navigation::Navigator navigator;
   FrameObserver observer;
   AnalysisObserver analysis_observer;
   const Scanner* owner = nullptr;
@@ -1009,12 +945,13 @@ struct Scanner::State {
   Stopwatch wall;
 };
 
-Scanner::Scanner(const SystemConfig& config, const world::Scene& scene, const recognition::ModelDatabase& database,
+Scanner::Scanner(const SystemConfig& config, platform::Platform* platform, const recognition::ModelDatabase& database,
                  std::uint64_t seed) {
   config.Validate();
   if (!database.finalized()) throw InputError("model database is not finalized");
   if (database.models().empty()) throw InputError("model database is empty");
-  state_ = std::make_unique<State>(config, scene, database, seed);
+  if (platform == nullptr) throw std::invalid_argument("Scanner: no platform");
+  state_ = std::make_unique<State>(config, platform, database, seed);
   state_->owner = this;
 }
 
@@ -1073,7 +1010,7 @@ bool Scanner::Step() {
       Termination t = s.ExploreStep(&step);
       // Before giving up, look around once more wherever the robot got stuck: the views show it the
       // space around it that its earlier, targeted views left unknown.
-      const Eigen::Vector2d here = s.robot.base().xy_m;
+      const Eigen::Vector2d here = s.platform.base().xy_m;
       const bool looked_here = std::any_of(s.stuck_lookarounds.begin(), s.stuck_lookarounds.end(),
                                            [&](const Eigen::Vector2d& p) { return (p - here).norm() < 0.5; });
       if (t == Termination::kStuck && !looked_here) {
@@ -1093,7 +1030,7 @@ bool Scanner::Step() {
       }
     }
   }
-  rec.travel_m = s.robot.travel().distance_m;
+  rec.travel_m = s.platform.travel().distance_m;
   StageTimes seconds = step.timing_ms;
   for (double* t : {&seconds.sense, &seconds.fuse, &seconds.segment, &seconds.recognize, &seconds.nbo, &seconds.nbv,
                     &seconds.navigate_sim}) {
@@ -1158,7 +1095,7 @@ void Scanner::ElementObjects(std::vector<int>* object_id, std::vector<int>* cate
 
 void Scanner::WriteNavigationMap(const std::string& path, int pixels_per_cell) const {
   const State& s = *state_;
-  const sim::OccupancyGrid2D& grid = s.navigator.grid();
+  const navigation::OccupancyGrid2D& grid = s.navigator.grid();
   const std::vector<std::uint8_t>& blocked = s.navigator.blocked();
   const int k = std::max(1, pixels_per_cell);
   const int w = std::max(1, grid.width * k), h = std::max(1, grid.height * k);
@@ -1172,9 +1109,9 @@ void Scanner::WriteNavigationMap(const std::string& path, int pixels_per_cell) c
     for (int ix = 0; ix < grid.width; ++ix) {
       const std::size_t c = grid.Index(ix, iy);
       std::uint8_t r = 128, g = 128, b = 128;
-      if (grid.cells[c] == sim::CellState::kFree) r = g = b = 255;
-      if (grid.cells[c] == sim::CellState::kOccupied) r = g = b = 0;
-      if (blocked[c] && grid.cells[c] == sim::CellState::kFree) r = 255, g = 190, b = 190;
+      if (grid.cells[c] == navigation::CellState::kFree) r = g = b = 255;
+      if (grid.cells[c] == navigation::CellState::kOccupied) r = g = b = 0;
+      if (blocked[c] && grid.cells[c] == navigation::CellState::kFree) r = 255, g = 190, b = 190;
       for (int dy = 0; dy < k; ++dy)
         for (int dx = 0; dx < k; ++dx) put(ix * k + dx, iy * k + dy, r, g, b);
     }

@@ -1,20 +1,21 @@
 #pragma once
-// The object-aware scanning loop (Algorithm 1 of the paper) in the simulator: sense, fuse,
-// pre-segment, post-segment with the recognizer, choose the next best object and its next best view
-// (or a floor frontier when no object is left), move, repeat; complete objects are replaced by their
-// best database model and leave the scene surface T. The simulator's ground truth is used only to
-// place the robot at the start and to render frames; the method reads nothing else of it.
+// The object-aware scanning loop (Algorithm 1 of the paper) over a robot (platform::Platform): sense,
+// fuse, pre-segment, post-segment with the recognizer, choose the next best object and its next best
+// view (or a floor frontier when no object is left), move, repeat; complete objects are replaced by
+// their best database model and leave the scene surface T. The scan starts where the platform is; the
+// method reads nothing but the platform's frames, poses and moves (objscan's simulator is one platform,
+// sim/simulated_robot.h).
 #include <functional>
 #include <memory>
 #include <set>
 #include <string>
 
 #include "objscan/common/progress.h"
+#include "objscan/platform/depth_frame.h"
+#include "objscan/platform/platform.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/scanning/run_record.h"
 #include "objscan/scanning/system_config.h"
-#include "objscan/sim/depth_frame.h"
-#include "objscan/world/scene.h"
 
 namespace objscan::mapping {
 struct FrameAssociation;
@@ -25,16 +26,18 @@ namespace objscan::scanning {
 // Called with every frame the robot takes and where the surface map fused its pixels (evaluation
 // accumulates ground-truth coverage and each map element's ground-truth instance from them; the
 // method itself never reads the frame's ground-truth channel).
-using FrameObserver = std::function<void(const sim::DepthFrame& frame, const mapping::FrameAssociation& association)>;
+using FrameObserver =
+    std::function<void(const platform::DepthFrame& frame, const mapping::FrameAssociation& association)>;
 class Scanner;
 // Called after every analysis of the map (post-segmentation), e.g. to score the segmentation over views.
 using AnalysisObserver = std::function<void(const Scanner& scanner)>;
 
 class Scanner {
  public:
-  // `scene` is the simulated world; `database` must be finalized. Both must outlive the scanner.
-  // Throws InputError when the scene has no free floor to start on.
-  Scanner(const SystemConfig& config, const world::Scene& scene, const recognition::ModelDatabase& database,
+  // Scans with the robot `platform`, from where it stands; `database` must be finalized. Both must
+  // outlive the scanner. `seed` is the run's, kept in its record: the scanner draws no random numbers
+  // (the simulator seeds its sensor noise from the same seed).
+  Scanner(const SystemConfig& config, platform::Platform* platform, const recognition::ModelDatabase& database,
           std::uint64_t seed);
   ~Scanner();
   Scanner(const Scanner&) = delete;

@@ -11,17 +11,17 @@
 #include "objscan/mapping/occupancy_map.h"
 #include "objscan/mapping/planes.h"
 #include "objscan/mapping/surface_map.h"
+#include "objscan/navigation/navigator.h"
 #include "objscan/planning/exploration.h"
 #include "objscan/planning/next_best_object.h"
 #include "objscan/planning/next_best_view.h"
+#include "objscan/platform/robot_options.h"
 #include "objscan/recognition/recognizer.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/scanning/report/report_options.h"
 #include "objscan/scanning/scanner_options.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
-#include "objscan/sim/depth_camera.h"
-#include "objscan/sim/navigator.h"
-#include "objscan/sim/robot.h"
 
 namespace objscan::scanning {
 
@@ -80,9 +80,9 @@ struct EvaluationOptions {
 
 struct SystemConfig {
   io::SceneLoadOptions scene;
-  sim::SensorOptions sensor;
-  sim::RobotOptions robot;
-  sim::NavigatorOptions navigation;
+  render::SensorOptions sensor;
+  platform::RobotOptions robot;
+  navigation::NavigatorOptions navigation;
   mapping::SurfaceMapOptions surface_map;
   mapping::OccupancyMapOptions occupancy;
   mapping::StructureOptions structure;

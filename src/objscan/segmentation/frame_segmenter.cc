@@ -17,7 +17,7 @@ void FrameSegmenterOptions::Validate() const {
   config::RequireInRange("min_segment_px", min_segment_px, 1, 1 << 24);
 }
 
-void SegmentFrame(const sim::DepthFrame& frame, const mapping::VertexNormalMap& vnm,
+void SegmentFrame(const platform::DepthFrame& frame, const mapping::VertexNormalMap& vnm,
                   const FrameSegmenterOptions& options, const std::vector<std::uint8_t>* pixel_class,
                   FrameSegmentation* out) {
   const int w = frame.width(), h = frame.height();

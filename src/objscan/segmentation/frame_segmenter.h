@@ -7,7 +7,7 @@
 
 #include "objscan/common/config.h"
 #include "objscan/mapping/vertex_normal_map.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 
 namespace objscan::segmentation {
 
@@ -52,10 +52,10 @@ struct FrameSegmentation {
 // storage is reused. Segment indices follow the first pixel of each segment in row-major order.
 // When `pixel_class` is given (one value per pixel, e.g. 0 = object, 1 = floor, 2 = wall),
 // neighbours of different classes are never in one segment.
-void SegmentFrame(const sim::DepthFrame& frame, const mapping::VertexNormalMap& vertex_normals,
+void SegmentFrame(const platform::DepthFrame& frame, const mapping::VertexNormalMap& vertex_normals,
                   const FrameSegmenterOptions& options, const std::vector<std::uint8_t>* pixel_class,
                   FrameSegmentation* out);
-inline void SegmentFrame(const sim::DepthFrame& frame, const mapping::VertexNormalMap& vertex_normals,
+inline void SegmentFrame(const platform::DepthFrame& frame, const mapping::VertexNormalMap& vertex_normals,
                          const FrameSegmenterOptions& options, FrameSegmentation* out) {
   SegmentFrame(frame, vertex_normals, options, nullptr, out);
 }

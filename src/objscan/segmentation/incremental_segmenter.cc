@@ -42,7 +42,8 @@ std::int32_t IncrementalSegmenter::FindRoot(std::int32_t label) {
   return root;
 }
 
-void IncrementalSegmenter::ClassifyPixels(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
+void IncrementalSegmenter::ClassifyPixels(const platform::DepthFrame& frame,
+                                          const mapping::FrameAssociation& association,
                                           const mapping::SurfaceMap& map) {
   const mapping::VertexNormalMap& vnm = association.vertex_normals;
   const std::size_t n = vnm.valid.size();
@@ -71,7 +72,7 @@ void IncrementalSegmenter::ClassifyPixels(const sim::DepthFrame& frame, const ma
   }
 }
 
-SegmenterUpdateStats IncrementalSegmenter::Update(const sim::DepthFrame& frame,
+SegmenterUpdateStats IncrementalSegmenter::Update(const platform::DepthFrame& frame,
                                                   const mapping::FrameAssociation& association,
                                                   mapping::SurfaceMap* map) {
   SegmenterUpdateStats stats;

@@ -95,7 +95,7 @@ class IncrementalSegmenter {
 
   // Segments `frame` and writes labels into the elements its pixels were fused into
   // (`association` from SurfaceMap::Integrate of this frame).
-  SegmenterUpdateStats Update(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
+  SegmenterUpdateStats Update(const platform::DepthFrame& frame, const mapping::FrameAssociation& association,
                               mapping::SurfaceMap* map);
 
   // Components C and their adjacency (elements of two labels in the same or 26-neighbouring cells of
@@ -120,7 +120,7 @@ class IncrementalSegmenter {
     return !split_pairs_.empty() && split_pairs_.count({std::min(a, b), std::max(a, b)}) > 0;
   }
   // Fills pixel_class_ (floor / wall / object) for the frame's valid pixels.
-  void ClassifyPixels(const sim::DepthFrame& frame, const mapping::FrameAssociation& association,
+  void ClassifyPixels(const platform::DepthFrame& frame, const mapping::FrameAssociation& association,
                       const mapping::SurfaceMap& map);
 
   IncrementalSegmenterOptions options_;

@@ -12,7 +12,7 @@
 #include "objscan/mapping/planes.h"
 #include "objscan/segmentation/segmentation_quality.h"
 #include "objscan/eval/ground_truth_votes.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/world/procedural/procedural.h"
 
 namespace objscan::segmentation {
@@ -31,7 +31,7 @@ void Scan(const AnalyticWorld& world, const std::vector<geometry::Pose3>& poses,
   Rng rng(seed);
   mapping::FrameAssociation assoc;
   for (const geometry::Pose3& T : poses) {
-    const sim::DepthFrame frame = world.Render(T, &rng);
+    const platform::DepthFrame frame = world.Render(T, &rng);
     s->map.Integrate(frame, &assoc);
     s->votes.Observe(frame, assoc);
     s->segmenter.Update(frame, assoc, &s->map);
@@ -237,13 +237,13 @@ TEST(IncrementalSegmenterTest, FloorPriorKeepsTheFloorLabelOffFurniture) {
                                                 0.0, M_PI / 2 * k);
     scene.Add(o);
   }
-  const sim::DepthCamera camera(scene, sim::SensorOptions());
+  const render::DepthCamera camera(scene, render::SensorOptions());
   Rng rng(19);
   Scanned s;
   mapping::FrameAssociation assoc;
   for (int k = 0; k < 8; ++k) {
     const double yaw = 2.0 * M_PI * k / 8 + 0.2;
-    const sim::DepthFrame frame =
+    const platform::DepthFrame frame =
         camera.Render(LookAt(Eigen::Vector3d(3.2 * std::cos(yaw), 3.2 * std::sin(yaw), 1.3), Eigen::Vector3d(0, 0, 0.3)),
                       &rng);
     s.map.Integrate(frame, &assoc);
@@ -398,7 +398,7 @@ Scanned ScanCounterRun(bool slot_split) {
   Rng rng(23);
   mapping::FrameAssociation assoc;
   for (const geometry::Pose3& T : poses) {
-    const sim::DepthFrame frame = world.Render(T, &rng);
+    const platform::DepthFrame frame = world.Render(T, &rng);
     s.map.Integrate(frame, &assoc);
     s.votes.Observe(frame, assoc);
     s.segmenter.Update(frame, assoc, &s.map);

@@ -21,9 +21,9 @@
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/segmentation_quality.h"
 #include "objscan/eval/ground_truth_votes.h"
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/sim/ground_truth_occupancy.h"
-#include "objscan/sim/navigator.h"
+#include "objscan/navigation/navigator.h"
 #include "objscan/world/procedural/procedural.h"
 #include "shared_data.h"
 
@@ -46,12 +46,12 @@ struct RoomScan {
 // does after each step.
 void Scan(const world::Scene& scene, const std::vector<geometry::Pose3>& views, std::uint64_t seed,
           RoomScan* scan) {
-  const sim::DepthCamera camera(scene, sim::SensorOptions());
+  const render::DepthCamera camera(scene, render::SensorOptions());
   const mapping::StructureDetector detector;
   Rng rng(seed);
   mapping::FrameAssociation association;
   for (const geometry::Pose3& T : views) {
-    const sim::DepthFrame frame = camera.Render(T, &rng);
+    const platform::DepthFrame frame = camera.Render(T, &rng);
     scan->map.Integrate(frame, &association);
     scan->votes.Observe(frame, association);
     scan->segmenter.Update(frame, association, &scan->map);
@@ -73,7 +73,7 @@ std::vector<std::int32_t> StructuralInstances(const world::Scene& scene) {
 std::vector<geometry::Pose3> RingViews(const world::Scene& scene, int count, bool outward,
                                        double radius_fraction) {
   const sim::GroundTruthOccupancy truth(scene);
-  const sim::Navigator navigator(truth, kRobotRadiusM, kRobotHeightM);
+  const navigation::Navigator navigator(truth, kRobotRadiusM, kRobotHeightM);
   const geometry::Aabb3 room = scene.StructureBounds(world::Category::kWall);
   const Eigen::Vector2d centre = room.Center().head<2>();
   const double radius = radius_fraction * std::min(room.Size().x(), room.Size().y());

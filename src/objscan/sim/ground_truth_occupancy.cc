@@ -6,6 +6,10 @@
 #include "objscan/common/error.h"
 
 namespace objscan::sim {
+
+using navigation::CellState;
+using navigation::OccupancyGrid2D;
+
 namespace {
 
 // Clips a convex polygon to the half-space sign * (z - z0) >= 0 (Sutherland-Hodgman, one plane).

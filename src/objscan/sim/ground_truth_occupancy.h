@@ -5,18 +5,18 @@
 // drive); without floor objects every cell is floor.
 #include <vector>
 
-#include "objscan/sim/occupancy_source.h"
+#include "objscan/navigation/occupancy_source.h"
 #include "objscan/world/scene.h"
 
 namespace objscan::sim {
 
-class GroundTruthOccupancy : public OccupancySource {
+class GroundTruthOccupancy : public navigation::OccupancySource {
  public:
   // The grid covers the bounds of the non-floor objects (or of the floor when there are none)
   // plus margin_m on every side.
   explicit GroundTruthOccupancy(const world::Scene& scene, double margin_m = 0.5);
 
-  OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override;
+  navigation::OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const override;
 
  private:
   std::vector<Eigen::Vector3d> obstacle_triangles_;  // 3 vertices per triangle, world frame

@@ -8,6 +8,9 @@
 namespace objscan::sim {
 namespace {
 
+using navigation::CellState;
+using navigation::OccupancyGrid2D;
+
 world::SceneObject Box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                        world::Category category = world::Category::kCabinet) {
   world::SceneObject o;

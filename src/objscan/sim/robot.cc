@@ -6,6 +6,9 @@
 #include "objscan/common/error.h"
 
 namespace objscan::sim {
+
+using platform::ReachStatus;
+
 namespace {
 
 bool SameArm(const ArmSetting& a, const ArmSetting& b) {
@@ -17,40 +20,13 @@ bool SameArm(const ArmSetting& a, const ArmSetting& b) {
 
 }  // namespace
 
-void RobotOptions::Validate() const {
-  config::RequirePositive("base_radius_m", base_radius_m);
-  config::RequirePositive("height_m", height_m);
-  config::RequireNonNegative("min_camera_height_m", min_camera_height_m);
-  config::Require(max_camera_height_m >= min_camera_height_m, "max_camera_height_m", "must be >= min_camera_height_m");
-  config::RequireInRange("min_pitch_deg", min_pitch_deg, -89.0, 89.0);
-  config::RequireInRange("max_pitch_deg", max_pitch_deg, min_pitch_deg, 89.0);
-  config::RequireNonNegative("max_reach_m", max_reach_m);
-  config::RequirePositive("speed_m_per_s", speed_m_per_s);
-  config::RequirePositive("turn_rate_deg_per_s", turn_rate_deg_per_s);
-  config::RequireNonNegative("arm_move_s", arm_move_s);
-  config::RequirePositive("base_search_step_m", base_search_step_m);
-  config::RequireInRange("base_search_directions", base_search_directions, 1, 3600);
-}
-
-const char* ReachStatusName(ReachStatus status) {
-  switch (status) {
-    case ReachStatus::kOk: return "ok";
-    case ReachStatus::kCameraHeightOutOfRange: return "camera_height_out_of_range";
-    case ReachStatus::kPitchOutOfRange: return "pitch_out_of_range";
-    case ReachStatus::kNoFreeBase: return "no_free_base";
-    case ReachStatus::kStartBlocked: return "start_blocked";
-    case ReachStatus::kUnreachable: return "unreachable";
-  }
-  return "unknown";
-}
-
-Robot::Robot(const RobotOptions& options, const BasePose& start, const ArmSetting& arm)
+Robot::Robot(const platform::RobotOptions& options, const platform::BasePose& start, const ArmSetting& arm)
     : options_(options), base_(start), arm_(arm) {
   options_.Validate();
   if (!start.xy_m.allFinite() || !std::isfinite(start.theta_rad)) throw InputError("robot: start pose is not finite");
 }
 
-geometry::Pose3 Robot::CameraPoseOf(const BasePose& base, const ArmSetting& arm) {
+geometry::Pose3 Robot::CameraPoseOf(const platform::BasePose& base, const ArmSetting& arm) {
   const double c = std::cos(base.theta_rad), s = std::sin(base.theta_rad);
   const Eigen::Vector2d offset_world(c * arm.camera_offset_base_m.x() - s * arm.camera_offset_base_m.y(),
                                      s * arm.camera_offset_base_m.x() + c * arm.camera_offset_base_m.y());
@@ -73,7 +49,7 @@ ReachStatus Robot::CheckCameraPose(const geometry::Pose3& T_world_camera) const 
   return ReachStatus::kOk;
 }
 
-double Robot::TravelTime(const Path2D& path, double theta_start_rad, bool arm_moves, double* theta_end_rad,
+double Robot::TravelTime(const navigation::Path2D& path, double theta_start_rad, bool arm_moves, double* theta_end_rad,
                          double* turn_rad) const {
   double theta = theta_start_rad, turn = 0.0, length = 0.0;
   for (std::size_t i = 1; i < path.waypoints.size(); ++i) {
@@ -91,7 +67,7 @@ double Robot::TravelTime(const Path2D& path, double theta_start_rad, bool arm_mo
          (arm_moves ? options_.arm_move_s : 0.0);
 }
 
-ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const Navigator& navigator) const {
+ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const navigation::Navigator& navigator) const {
   ReachPlan plan;
   plan.status = CheckCameraPose(T_world_camera);
   if (!plan.ok()) return plan;
@@ -146,7 +122,7 @@ ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const Navigator& 
     return plan;
   }
   if ((best_xy - base_.xy_m).norm() < 1e-12) {
-    plan.path.status = PlanStatus::kReached;
+    plan.path.status = navigation::PlanStatus::kReached;
     plan.path.waypoints = {base_.xy_m, base_.xy_m};
   } else {
     plan.path = navigator.Plan(base_.xy_m, best_xy);
@@ -186,7 +162,7 @@ void Robot::Execute(const ReachPlan& plan) {
   arm_ = plan.arm;
 }
 
-ReachPlan Robot::MoveTo(const geometry::Pose3& T_world_camera, const Navigator& navigator) {
+ReachPlan Robot::MoveTo(const geometry::Pose3& T_world_camera, const navigation::Navigator& navigator) {
   ReachPlan plan = PlanTo(T_world_camera, navigator);
   Execute(plan);
   return plan;

@@ -14,6 +14,12 @@ namespace {
 
 using testing::BoxObject;
 using testing::Room;
+using navigation::Navigator;
+using platform::BasePose;
+using platform::ReachStatus;
+using platform::ReachStatusName;
+using platform::RobotOptions;
+using navigation::NavigatorOptions;
 
 void ExpectSamePose(const geometry::Pose3& a, const geometry::Pose3& b, double tol = 1e-9) {
   EXPECT_LT((a.translation() - b.translation()).norm(), tol);

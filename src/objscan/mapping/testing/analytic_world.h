@@ -10,7 +10,7 @@
 
 #include "objscan/common/rng.h"
 #include "objscan/geometry/pose.h"
-#include "objscan/sim/depth_frame.h"
+#include "objscan/platform/depth_frame.h"
 
 namespace objscan::mapping::testing {
 
@@ -68,10 +68,10 @@ struct AnalyticWorld {
   }
 
   // Renders a frame; noise sigma(z) = base + quadratic * z^2 when rng != nullptr.
-  sim::DepthFrame Render(const geometry::Pose3& T_world_camera, Rng* rng, double sigma_base_m = 0.001,
+  platform::DepthFrame Render(const geometry::Pose3& T_world_camera, Rng* rng, double sigma_base_m = 0.001,
                          double sigma_quadratic_per_m = 0.0015,
-                         const sim::CameraIntrinsics& intrinsics = sim::CameraIntrinsics()) const {
-    sim::DepthFrame frame;
+                         const platform::CameraIntrinsics& intrinsics = platform::CameraIntrinsics()) const {
+    platform::DepthFrame frame;
     frame.intrinsics = intrinsics;
     frame.T_world_camera = T_world_camera;
     const std::size_t n = static_cast<std::size_t>(intrinsics.NumPixels());

@@ -1,8 +1,8 @@
-#include "objscan/sim/normal_sampler.h"
+#include "objscan/render/normal_sampler.h"
 
 #include <cmath>
 
-namespace objscan::sim {
+namespace objscan::render {
 namespace {
 
 // Right edge of the base layer and the common area of every layer for 128 layers.
@@ -49,4 +49,4 @@ double NormalSampler::operator()(Rng& rng) const {
   }
 }
 
-}  // namespace objscan::sim
+}  // namespace objscan::render

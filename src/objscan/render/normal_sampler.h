@@ -6,7 +6,7 @@
 
 #include "objscan/common/rng.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 
 class NormalSampler {
  public:
@@ -19,4 +19,4 @@ class NormalSampler {
   std::array<double, kLayers + 1> f_;  // density exp(-x^2 / 2) at x_
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::render

@@ -1,4 +1,4 @@
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 
 #include <gtest/gtest.h>
 
@@ -8,10 +8,13 @@
 
 #include "objscan/common/error.h"
 #include "objscan/geometry/mesh.h"
-#include "objscan/sim/depth_noise.h"
+#include "objscan/render/depth_noise.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 namespace {
+
+using platform::CameraIntrinsics;
+using platform::DepthFrame;
 
 constexpr std::int32_t kWallId = 7;
 constexpr std::int32_t kBoxId = 3;
@@ -368,4 +371,4 @@ TEST(DepthCameraTest, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace objscan::sim
+}  // namespace objscan::render

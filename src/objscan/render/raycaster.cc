@@ -1,4 +1,4 @@
-#include "objscan/sim/raycaster.h"
+#include "objscan/render/raycaster.h"
 
 #include <embree3/rtcore.h>
 
@@ -9,9 +9,9 @@
 #include <string>
 
 #include "objscan/common/error.h"
-#include "objscan/sim/parallel_for.h"
+#include "objscan/common/parallel_for.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 namespace {
 
 constexpr int kPacket = 16;
@@ -330,4 +330,4 @@ PointProbe Raycaster::Probe(const Eigen::Vector3d& point, int num_directions, do
   return probe;
 }
 
-}  // namespace objscan::sim
+}  // namespace objscan::render

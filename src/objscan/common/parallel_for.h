@@ -1,7 +1,7 @@
 #pragma once
 // Runs fn(block) for block in [0, num_blocks) on up to `threads` threads. Blocks are handed out
 // dynamically, so callers must make each block's result depend on the block index only (never on
-// which thread ran it): that is what keeps the simulator's output independent of the thread count.
+// which thread ran it): that is what keeps results independent of the thread count.
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-namespace objscan::sim {
+namespace objscan {
 
 // 0 means "as many as the hardware has".
 inline int ResolveThreadCount(int threads) {
@@ -45,4 +45,4 @@ void ParallelForBlocks(int num_blocks, int threads, const Fn& fn) {
   if (error) std::rethrow_exception(error);
 }
 
-}  // namespace objscan::sim
+}  // namespace objscan

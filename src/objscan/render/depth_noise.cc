@@ -1,6 +1,6 @@
-#include "objscan/sim/depth_noise.h"
+#include "objscan/render/depth_noise.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 
 DepthNoiseModel::DepthNoiseModel(const SensorOptions& options)
     : sigma_base_m_(options.noise_sigma_base_m),
@@ -14,4 +14,4 @@ double DepthNoiseModel::PixelPhase(std::uint64_t pixel_index) {
   return static_cast<double>(MixSeed(pixel_index ^ 0xD1B54A32D192ED03ull) >> 11) * 0x1.0p-53;
 }
 
-}  // namespace objscan::sim
+}  // namespace objscan::render

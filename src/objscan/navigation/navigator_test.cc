@@ -1,4 +1,4 @@
-#include "objscan/sim/navigator.h"
+#include "objscan/navigation/navigator.h"
 
 #include <gtest/gtest.h>
 
@@ -12,11 +12,12 @@
 #include "objscan/sim/test_scenes.h"
 #include "objscan/world/procedural/procedural.h"
 
-namespace objscan::sim {
+namespace objscan::navigation {
 namespace {
 
-using testing::BoxObject;
-using testing::Room;
+using sim::GroundTruthOccupancy;
+using sim::testing::BoxObject;
+using sim::testing::Room;
 
 constexpr double kRadius = 0.25;
 constexpr double kHeight = 1.8;
@@ -313,4 +314,4 @@ TEST(NavigatorTest, NeverPlansThroughFurnitureOfProceduralRooms) {
 }
 
 }  // namespace
-}  // namespace objscan::sim
+}  // namespace objscan::navigation

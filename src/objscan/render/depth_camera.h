@@ -7,11 +7,11 @@
 
 #include "objscan/common/config.h"
 #include "objscan/common/rng.h"
-#include "objscan/sim/depth_frame.h"
-#include "objscan/sim/raycaster.h"
+#include "objscan/platform/depth_frame.h"
+#include "objscan/render/raycaster.h"
 #include "objscan/world/scene.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 
 struct SensorOptions {
   int width_px = 640;
@@ -32,7 +32,7 @@ struct SensorOptions {
   double edge_dropout_jump_m = 0.05;          // depth discontinuity (relative: per metre of depth)
   int threads = 0;                            // 0 = hardware concurrency; results do not depend on it
 
-  CameraIntrinsics Intrinsics() const;
+  platform::CameraIntrinsics Intrinsics() const;
   template <class V>
   void Visit(V& v) {
     v("width_px", width_px);
@@ -66,7 +66,7 @@ class DepthCamera {
 
   // Renders one frame from T_world_camera (optical frame: X right, Y down, Z forward).
   // Noise draws from `rng` (may be nullptr when options.noise is false).
-  DepthFrame Render(const geometry::Pose3& T_world_camera, Rng* rng) const;
+  platform::DepthFrame Render(const geometry::Pose3& T_world_camera, Rng* rng) const;
 
   const SensorOptions& options() const { return options_; }
   // The ray caster holding the committed scene (line-of-sight and pose checks reuse it).
@@ -78,4 +78,4 @@ class DepthCamera {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::render

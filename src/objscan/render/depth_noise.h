@@ -17,10 +17,10 @@
 #include <cstdint>
 
 #include "objscan/common/rng.h"
-#include "objscan/sim/depth_camera.h"
-#include "objscan/sim/normal_sampler.h"
+#include "objscan/render/depth_camera.h"
+#include "objscan/render/normal_sampler.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 
 class DepthNoiseModel {
  public:
@@ -67,4 +67,4 @@ class DepthNoiseModel {
   NormalSampler normal_;
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::render

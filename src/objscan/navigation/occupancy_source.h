@@ -1,9 +1,9 @@
 #pragma once
 // Where the navigator's 2-D occupancy comes from: the ground-truth scene (tests, `render`) now, the
 // robot's own map later. One call per map update, returning a whole grid (no per-cell virtual calls).
-#include "objscan/sim/occupancy_grid.h"
+#include "objscan/navigation/occupancy_grid.h"
 
-namespace objscan::sim {
+namespace objscan::navigation {
 
 class OccupancySource {
  public:
@@ -14,4 +14,4 @@ class OccupancySource {
   virtual OccupancyGrid2D Grid(double min_z_m, double max_z_m, double cell_size_m) const = 0;
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::navigation

@@ -1,4 +1,4 @@
-#include "objscan/sim/navigator.h"
+#include "objscan/navigation/navigator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "objscan/common/error.h"
 
-namespace objscan::sim {
+namespace objscan::navigation {
 namespace {
 
 constexpr double kSqrt2 = 1.41421356237309504880;
@@ -339,4 +339,4 @@ bool Navigator::NearestFree(const Eigen::Vector2d& xy, double max_distance_m, Ei
   return best < kInf;
 }
 
-}  // namespace objscan::sim
+}  // namespace objscan::navigation

@@ -7,7 +7,7 @@
 
 #include "objscan/geometry/pose.h"
 
-namespace objscan::sim {
+namespace objscan::platform {
 
 struct CameraIntrinsics {
   int width_px = 640;
@@ -55,4 +55,4 @@ struct DepthFrame {
   }
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::platform

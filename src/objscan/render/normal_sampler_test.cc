@@ -1,4 +1,4 @@
-#include "objscan/sim/normal_sampler.h"
+#include "objscan/render/normal_sampler.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-namespace objscan::sim {
+namespace objscan::render {
 namespace {
 
 double Phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
@@ -58,4 +58,4 @@ TEST(NormalSamplerTest, SameSeedSameSequence) {
 }
 
 }  // namespace
-}  // namespace objscan::sim
+}  // namespace objscan::render

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace objscan::sim {
+namespace objscan::navigation {
 
 enum class CellState : std::uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2 };
 
@@ -36,4 +36,4 @@ struct OccupancyGrid2D {
   std::size_t Count(CellState state) const;
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::navigation

@@ -1,14 +1,14 @@
-#include "objscan/sim/depth_camera.h"
+#include "objscan/render/depth_camera.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "objscan/common/error.h"
-#include "objscan/sim/depth_noise.h"
-#include "objscan/sim/parallel_for.h"
+#include "objscan/render/depth_noise.h"
+#include "objscan/common/parallel_for.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 namespace {
 
 // Rays are traced in 4x4 pixel tiles (one 16-ray packet each) over bands of this many rows.
@@ -20,8 +20,8 @@ bool PoseFinite(const geometry::Pose3& T) { return T.matrix().allFinite(); }
 
 }  // namespace
 
-CameraIntrinsics SensorOptions::Intrinsics() const {
-  CameraIntrinsics k;
+platform::CameraIntrinsics SensorOptions::Intrinsics() const {
+  platform::CameraIntrinsics k;
   k.width_px = width_px;
   k.height_px = height_px;
   k.fx_px = fx_px;
@@ -83,14 +83,14 @@ DepthCamera::~DepthCamera() = default;
 
 const Raycaster& DepthCamera::raycaster() const { return impl_->raycaster; }
 
-DepthFrame DepthCamera::Render(const geometry::Pose3& T_world_camera, Rng* rng) const {
+platform::DepthFrame DepthCamera::Render(const geometry::Pose3& T_world_camera, Rng* rng) const {
   if (!PoseFinite(T_world_camera)) throw InputError("depth camera: T_world_camera is not finite");
   if (options_.noise && rng == nullptr) throw InputError("depth camera: noise is on but no Rng was given");
   const int width = options_.width_px;
   const int height = options_.height_px;
   const std::size_t num_pixels = static_cast<std::size_t>(width) * height;
 
-  DepthFrame frame;
+  platform::DepthFrame frame;
   frame.intrinsics = options_.Intrinsics();
   frame.T_world_camera = T_world_camera;
   frame.depth_m.assign(num_pixels, 0.f);
@@ -196,4 +196,4 @@ DepthFrame DepthCamera::Render(const geometry::Pose3& T_world_camera, Rng* rng) 
   return frame;
 }
 
-}  // namespace objscan::sim
+}  // namespace objscan::render

@@ -1,4 +1,4 @@
-#include "objscan/sim/raycaster.h"
+#include "objscan/render/raycaster.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include "objscan/common/rng.h"
 #include "objscan/geometry/mesh.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 namespace {
 
 // A unit box [0,1]^3 (instance 1) and a floor quad z = -1 (instance 2).
@@ -178,4 +178,4 @@ TEST(RaycasterTest, FibonacciDirectionsAreUnitEvenAndSpreadOverTheSphere) {
 }
 
 }  // namespace
-}  // namespace objscan::sim
+}  // namespace objscan::render

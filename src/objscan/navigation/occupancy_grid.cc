@@ -1,11 +1,11 @@
-#include "objscan/sim/occupancy_grid.h"
+#include "objscan/navigation/occupancy_grid.h"
 
 #include <algorithm>
 
 #include "objscan/common/error.h"
 #include "objscan/common/limits.h"
 
-namespace objscan::sim {
+namespace objscan::navigation {
 
 OccupancyGrid2D OccupancyGrid2D::Covering(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy,
                                           double cell_size_m, CellState state) {
@@ -29,4 +29,4 @@ std::size_t OccupancyGrid2D::Count(CellState state) const {
   return static_cast<std::size_t>(std::count(cells.begin(), cells.end(), state));
 }
 
-}  // namespace objscan::sim
+}  // namespace objscan::navigation

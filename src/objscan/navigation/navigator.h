@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "objscan/common/config.h"
-#include "objscan/sim/occupancy_source.h"
+#include "objscan/navigation/occupancy_source.h"
 
-namespace objscan::sim {
+namespace objscan::navigation {
 
 struct NavigatorOptions {
   double cell_size_m = 0.05;
@@ -107,4 +107,4 @@ class Navigator {
   std::vector<std::uint8_t> blocked_;
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::navigation

@@ -12,7 +12,7 @@
 
 #include "objscan/world/scene.h"
 
-namespace objscan::sim {
+namespace objscan::render {
 
 struct RayHit {
   float distance = std::numeric_limits<float>::infinity();  // ray parameter t (metres for unit directions)
@@ -88,4 +88,4 @@ class Raycaster {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace objscan::sim
+}  // namespace objscan::render
