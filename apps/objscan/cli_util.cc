@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -36,6 +37,32 @@ void FinishProgress() {
 std::uint64_t DatabaseMemoryLimitBytes(double max_database_memory_mb) {
   return recognition::DatabaseMemoryLimitBytes(max_database_memory_mb);
 }
+
+CLI::Option* AddModelPathOption(CLI::App* cmd, std::vector<std::string>* values, const std::string& for_what) {
+  return cmd
+      ->add_option("--model-path", *values,
+                   "folders for Gazebo model:// URIs after the world's own (colon-separated, repeatable; then "
+                   "$OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH); their parents and $GAZEBO_RESOURCE_PATH serve "
+                   "relative file:// URIs" +
+                       for_what)
+      ->allow_extra_args(false);
+}
+
+std::string JoinModelPath(const std::vector<std::string>& values) {
+  std::string joined;
+  for (const std::string& v : values) {
+    if (v.empty()) continue;
+    joined += (joined.empty() ? "" : ":") + v;
+  }
+  return joined;
+}
+
+CLI::Option* AddAllowMissingFlag(CLI::App* cmd, int* count, const std::string& help) {
+  return cmd->add_flag("--allow-missing", *count,
+                       help + "; a world that keeps fewer than half of its models still fails unless given twice");
+}
+
+AllowMissing AllowMissingFromCount(int count) { return AllowMissing{count >= 1, count >= 2}; }
 
 PoseArg ParsePoseArg(const std::string& text, const std::string& option_name) {
   std::vector<double> values;

@@ -7,7 +7,26 @@
 
 #include "objscan/common/progress.h"
 
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
 namespace objscan::app {
+
+// --model-path DIRS on `cmd`: repeatable, each value a colon-separated list of folders (as
+// $GAZEBO_MODEL_PATH); `for_what` ends the help text. JoinModelPath gives the one list they make.
+CLI::Option* AddModelPathOption(CLI::App* cmd, std::vector<std::string>* values, const std::string& for_what);
+std::string JoinModelPath(const std::vector<std::string>& values);
+
+// --allow-missing on `cmd`, counted: once lists what could not be loaded, twice also loads a world
+// that kept fewer than half of its models. ApplyAllowMissing sets the load options from the count.
+CLI::Option* AddAllowMissingFlag(CLI::App* cmd, int* count, const std::string& help);
+struct AllowMissing {
+  bool allow = false;
+  bool insist = false;  // given twice: io::SceneLoadOptions::min_loaded_model_fraction = 0
+};
+AllowMissing AllowMissingFromCount(int count);
 
 // A progress callback drawing a bar on stderr when stderr is a terminal, nothing otherwise.
 ProgressCallback TerminalProgress(const std::string& label);

@@ -42,7 +42,7 @@ struct BenchArgs {
   int seeds = 2;
   int first_seed = 1;
   std::vector<std::string> sets;
-  std::string model_path;
+  std::vector<std::string> model_path;
   std::string category_map;
   bool db_from_worlds = false;
   std::uint64_t seed = 1;
@@ -137,7 +137,7 @@ int RunBench(const BenchArgs& a) {
     throw InputError("--db-from-worlds needs a suite of .world files (e.g. oasc-dev), not procedural");
   }
   if (a.db_from_worlds && !a.db.empty()) throw InputError("--db and --db-from-worlds exclude each other");
-  const std::string model_path = JoinPaths(a.model_path, suite.model_path);
+  const std::string model_path = JoinPaths(JoinModelPath(a.model_path), suite.model_path);
   // The configuration must be valid before any run starts (each run checks it again).
   std::vector<std::string> run_sets = a.sets;
   if (!a.category_map.empty()) {
@@ -314,7 +314,7 @@ void AddBenchCommand(CLI::App& root, RunFn* run) {
                   "looked at)")
       ->capture_default_str();
   cmd->add_option("--set", args->sets, "override a config key of every run: key=value (repeatable)");
-  cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
+  AddModelPathOption(cmd, &args->model_path, "");
   cmd->add_option("--category-map", args->category_map, "category map YAML of every run (sets scene.category_map)");
   cmd->add_option("--seed", args->seed, "random seed of every run")->capture_default_str();
   cmd->add_flag("--db-from-worlds", args->db_from_worlds,

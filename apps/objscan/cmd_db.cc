@@ -33,7 +33,7 @@ namespace {
 
 struct DbArgs {
   std::vector<std::string> models;
-  std::string model_path;
+  std::vector<std::string> model_path;
   std::string category_map;
   std::string out;
   std::string info_db;
@@ -67,7 +67,7 @@ std::vector<recognition::ModelSource> ModelSourcesFrom(const std::vector<std::st
   std::vector<recognition::ModelSource> sources;
   namespace fs = std::filesystem;
   io::SceneLoadOptions load;
-  load.model_path = a.model_path;
+  load.model_path = JoinModelPath(a.model_path);
   if (!a.category_map.empty()) load.category_map = a.category_map;
   std::vector<eval::WorldModels> worlds;
   const auto add_worlds = [&]() {
@@ -332,7 +332,7 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
                     "their categorised objects), 'procedural', 'sweethome3d' (Sweet Home 3D catalogs of "
                     "$OBJSCAN_SWEETHOME3D_DIR or /usr/share/sweethome3d/furniture) or a catalog X.sh3f")
       ->required();
-  build->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs of --models worlds");
+  AddModelPathOption(build, &args->model_path, " (of --models worlds)");
   build->add_option("--category-map", args->category_map,
                     "category map YAML for --models worlds, scans and Sweet Home 3D catalogs (these default to "
                     "categories/sweethome3d.yaml)");
@@ -360,7 +360,7 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   eval->add_option("--queries-per-category", args->queries_per_category,
                    "query models per category (the first ones; 0 = all)")
       ->default_str("5");
-  eval->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs of --queries worlds");
+  AddModelPathOption(eval, &args->model_path, " (of --queries worlds)");
   eval->add_option("--category-map", args->category_map, "category map YAML for --queries worlds and scans");
   eval->add_option("--threads", args->threads, "queries run in parallel (0 = all cores)")->default_str("0");
   eval->add_option("--set", args->sets, "override an eval option, e.g. recognition.shortlist_size=30");

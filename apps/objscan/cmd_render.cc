@@ -28,8 +28,9 @@ struct RenderArgs {
   std::string noise = "on";
   std::uint64_t seed = 1;
   int threads = 0;
-  bool allow_missing = false;
-  std::string model_path;
+  int allow_missing = 0;  // times given
+  std::vector<std::string> model_path;
+  bool doors_open = false;
   std::string category_map;
 };
 
@@ -99,8 +100,11 @@ int RunRender(const RenderArgs& args) {
     throw InputError("--out '" + args.out + "': exists and is not a folder");
   }
   io::SceneLoadOptions load_options;
-  load_options.allow_missing = args.allow_missing;
-  load_options.model_path = args.model_path;
+  const AllowMissing allow_missing = AllowMissingFromCount(args.allow_missing);
+  load_options.allow_missing = allow_missing.allow;
+  if (allow_missing.insist) load_options.min_loaded_model_fraction = 0.0;
+  load_options.model_path = JoinModelPath(args.model_path);
+  load_options.doors_open = args.doors_open;
   if (!args.category_map.empty()) load_options.category_map = args.category_map;
   const world::Scene scene = io::LoadScene(args.scene, load_options);
 
@@ -168,9 +172,9 @@ void AddRenderCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--seed", args->seed, "noise seed")->default_str("1");
   cmd->add_option("--threads", args->threads, "render threads (0 = all cores; the image does not depend on it)")
       ->default_str("0");
-  cmd->add_flag("--allow-missing", args->allow_missing, "render what can be loaded when meshes are missing");
-  cmd->add_option("--model-path", args->model_path,
-                  "colon-separated folders searched for model:// URIs after the world's folder");
+  AddAllowMissingFlag(cmd, &args->allow_missing, "render what can be loaded when meshes are missing");
+  AddModelPathOption(cmd, &args->model_path, "");
+  cmd->add_flag("--doors-open", args->doors_open, "treat doors as open: remove every object of category door");
   cmd->add_option("--category-map", args->category_map, "category map YAML (instance categories of the render)");
   cmd->callback([run, args] { *run = [args] { return RunRender(*args); }; });
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "objscan/common/error.h"
 #include "objscan/eval/report.h"
 
 namespace objscan::app {
@@ -19,6 +20,14 @@ struct ReportArgs {
 };
 
 int RunReport(const ReportArgs& a) {
+  // A typo'd or empty folder would give a report of no run: say so before writing anything.
+  const std::vector<std::string> without_runs = eval::FoldersWithoutRuns(a.dirs);
+  if (!without_runs.empty()) {
+    std::string list;
+    for (const auto& d : without_runs) list += (list.empty() ? "" : ", ") + d;
+    throw InputError(list + ": no run found (no run.json or failed.json below it); give a folder written by "
+                     "`objscan run --out` or `objscan bench --out`");
+  }
   const eval::Report report = eval::BuildReport(eval::CollectRuns(a.dirs));
   const std::string out = a.out.empty() ? (std::filesystem::path(a.dirs.front()) / "report").string() : a.out;
   const std::vector<std::string> files = eval::WriteReport(report, out);

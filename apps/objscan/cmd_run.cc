@@ -44,8 +44,9 @@ struct RunArgs {
   std::uint64_t seed = 1;
   std::string config_file;
   std::vector<std::string> sets;
-  std::string model_path;
+  std::vector<std::string> model_path;
   std::string category_map;
+  bool doors_open = false;
   bool print_config = false;
   bool quiet = false;
   bool save_frames = false;
@@ -138,7 +139,8 @@ double CpuSeconds() {
 
 int RunScan(const RunArgs& args) {
   std::vector<std::string> sets = args.sets;
-  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
+  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + JoinModelPath(args.model_path));
+  if (args.doors_open) sets.push_back("scene.doors_open=true");
   if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
   const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
   if (args.print_config) {
@@ -149,6 +151,10 @@ int RunScan(const RunArgs& args) {
   const std::vector<eval::ReportVariant> variants = eval::LoadReportVariants(config.eval.report_variants, config.report);
   const world::Scene scene = io::LoadScene(args.scene, config.scene);
   scanning::CheckSceneLimits(scene, config, args.scene);
+  // What the loader changed or guessed (doors removed, instances inferred) bears on every metric.
+  for (const std::string& note : scene.load_notes()) {
+    if (!args.quiet) std::fprintf(stderr, "objscan run: note: %s\n", note.c_str());
+  }
   const std::string db_path = args.db.empty() ? DefaultDatabasePathFor(args.scene, !args.quiet) : args.db;
   const recognition::ModelDatabase database = recognition::ModelDatabase::Load(
       db_path, DatabaseMemoryLimitBytes(config.recognition.max_database_memory_mb));
@@ -200,13 +206,30 @@ int RunScan(const RunArgs& args) {
   outputs.warn = [](const std::string& m) { std::fprintf(stderr, "objscan run: warning: %s\n", m.c_str()); };
   eval::WriteRunOutputs(args.out, outputs);
 
+  // Rooms the robot could not enter (closed doors): the user is told, and given the metrics without them.
+  if (!metrics.unreachable_rooms.empty()) {
+    std::size_t objects = 0;
+    double area_m2 = 0.0;
+    for (const auto& u : metrics.unreachable_rooms) {
+      objects += u.objects.size();
+      area_m2 += u.area_m2;
+    }
+    std::fprintf(stderr,
+                 "objscan run: note: %zu room%s (%.1f m2, %zu objects) could not be reached from the start (closed "
+                 "doors?; --doors-open removes them); over the reachable rooms recall %.4f, precision %.4f "
+                 "(run.json metrics.unreachable_rooms, metrics.reachable)\n",
+                 metrics.unreachable_rooms.size(), metrics.unreachable_rooms.size() == 1 ? "" : "s", area_m2, objects,
+                 metrics.reachable.Recall(), metrics.reachable.Precision());
+  }
   std::printf(
       "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "
       "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f, "
-      "\"peak_rss_mb\": %.1f, \"cpu_s\": %.2f}\n",
+      "\"peak_rss_mb\": %.1f, \"cpu_s\": %.2f, \"unreachable_rooms\": %zu, \"recall_reachable\": %.4f, "
+      "\"precision_reachable\": %.4f, \"unreachable_frontier_area_m2\": %.2f}\n",
       args.out.c_str(), scanning::TerminationName(record.terminated), record.views, record.objects.size(),
       metrics.recall, metrics.precision, metrics.coverage_rate, metrics.rand_index, record.travel_m,
-      record.timing_s.total, outputs.peak_rss_mb, outputs.cpu_s);
+      record.timing_s.total, outputs.peak_rss_mb, outputs.cpu_s, metrics.unreachable_rooms.size(),
+      metrics.reachable.Recall(), metrics.reachable.Precision(), record.unreachable.frontier_area_m2);
   return 0;
 }
 
@@ -222,7 +245,10 @@ void AddRunCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--seed", args->seed, "random seed (sensor noise and every random choice)")->capture_default_str();
   cmd->add_option("--config", args->config_file, "YAML config file (see config/default.yaml)");
   cmd->add_option("--set", args->sets, "override a config key: section.key=value (repeatable)");
-  cmd->add_option("--model-path", args->model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
+  AddModelPathOption(cmd, &args->model_path, " (sets scene.model_path)");
+  cmd->add_flag("--doors-open", args->doors_open,
+                "treat doors as open: remove every object of category door, for a scan of the whole house "
+                "(sets scene.doors_open)");
   cmd->add_option("--category-map", args->category_map, "category map YAML (sets scene.category_map)");
   cmd->add_flag("--print-config", args->print_config, "print the effective configuration as YAML and exit");
   cmd->add_flag("--quiet", args->quiet, "no progress output on stderr");

@@ -19,9 +19,10 @@ struct SceneArgs {
   bool info = false;
   std::string topview;
   std::string export_ply;
-  bool allow_missing = false;
-  std::string model_path;
+  int allow_missing = 0;  // times given
+  std::vector<std::string> model_path;
   std::string category_map;
+  bool doors_open = false;
 };
 
 using Json = nlohmann::ordered_json;
@@ -53,6 +54,10 @@ Json SceneInfo(const world::Scene& scene) {
   info["num_triangles"] = scene.NumTriangles();
   info["missing_meshes"] = scene.missing_meshes();
   info["unmapped_models"] = scene.unmapped_models();
+  // "inferred": the loader grouped the objects itself (a ScanNet scan without its aggregation), so
+  // ground truth and every metric rest on that guess.
+  info["instances"] = scene.instances_inferred() ? "inferred" : "annotated";
+  info["load_notes"] = scene.load_notes();
   return info;
 }
 
@@ -79,8 +84,11 @@ io::PlyData SceneMesh(const world::Scene& scene) {
 
 int RunScene(const SceneArgs& args) {
   io::SceneLoadOptions options;
-  options.allow_missing = args.allow_missing;
-  options.model_path = args.model_path;
+  const AllowMissing allow_missing = AllowMissingFromCount(args.allow_missing);
+  options.allow_missing = allow_missing.allow;
+  if (allow_missing.insist) options.min_loaded_model_fraction = 0.0;
+  options.model_path = JoinModelPath(args.model_path);
+  options.doors_open = args.doors_open;
   if (!args.category_map.empty()) options.category_map = args.category_map;
   const world::Scene scene = io::LoadScene(args.scene, options);
   if (!args.topview.empty()) io::RenderTopView(scene, io::TopViewOptions()).canvas.SavePng(args.topview);
@@ -95,6 +103,9 @@ int RunScene(const SceneArgs& args) {
   if (!scene.missing_meshes().empty()) {
     std::fprintf(stderr, "objscan scene: warning: %zu meshes could not be loaded (listed in --info)\n",
                  scene.missing_meshes().size());
+  }
+  if (scene.instances_inferred()) {
+    std::fprintf(stderr, "objscan scene: note: object instances were inferred, not read from the scan (see --info)\n");
   }
   if (!scene.unmapped_models().empty()) {
     std::fprintf(stderr, "objscan scene: warning: %zu models have no category in the category map (`other`, listed in --info)\n",
@@ -115,11 +126,11 @@ void AddSceneCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--topview", args->topview, "write a top view PNG (objects coloured by category, legend)");
   cmd->add_option("--export", args->export_ply,
                   "write the scene mesh as PLY with per-vertex instance_id and category_id");
-  cmd->add_flag("--allow-missing", args->allow_missing,
-                "load what can be loaded and list unresolved meshes in missing_meshes instead of failing");
-  cmd->add_option("--model-path", args->model_path,
-                  "colon-separated folders searched for model:// URIs after the world's folder "
-                  "(then $OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH)");
+  AddAllowMissingFlag(cmd, &args->allow_missing,
+                      "load what can be loaded and list unresolved meshes in missing_meshes instead of failing");
+  AddModelPathOption(cmd, &args->model_path, "");
+  cmd->add_flag("--doors-open", args->doors_open,
+                "treat doors as open: remove every object of category door (scene.doors_open)");
   cmd->add_option("--category-map", args->category_map,
                   "category map YAML (default: config/categories/default.yaml; see docs/real-inputs.md)");
   cmd->callback([run, args] { *run = [args] { return RunScene(*args); }; });

@@ -69,9 +69,8 @@ int AddObject(Mesh* mesh, const std::string& raw_label, int nyu40) {
   return static_cast<int>(mesh->objects.size()) - 1;
 }
 
-// Four sides and the top of an axis-aligned box standing on the floor.
-void AddBox(Mesh* mesh, const std::string& raw_label, int nyu40, const double* b) {
-  const int object = AddObject(mesh, raw_label, nyu40);
+// Four sides and the top of an axis-aligned box, a piece of `object` not joined to its others.
+void AddBoxTo(Mesh* mesh, int object, const double* b) {
   std::map<std::array<long, 3>, int> welded;
   const double dx = b[3] - b[0], dy = b[4] - b[1], dz = b[5] - b[2];
   AddRectangle(mesh, object, {b[0], b[1], b[2]}, {dx, 0, 0}, {0, 0, dz}, 0.1, &welded);
@@ -81,7 +80,21 @@ void AddBox(Mesh* mesh, const std::string& raw_label, int nyu40, const double* b
   AddRectangle(mesh, object, {b[0], b[1], b[5]}, {dx, 0, 0}, {0, dy, 0}, 0.1, &welded);
 }
 
-Mesh MakeRoom() {
+void AddBox(Mesh* mesh, const std::string& raw_label, int nyu40, const double* b) {
+  AddBoxTo(mesh, AddObject(mesh, raw_label, nyu40), b);
+}
+
+// A chair of box `b`: one box, or its base and its seat 20 cm above it.
+void AddChair(Mesh* mesh, const double* b, bool split) {
+  if (!split) return AddBox(mesh, "office chair", 5, b);
+  const int chair = AddObject(mesh, "office chair", 5);
+  const double base[6] = {b[0], b[1], b[2], b[3], b[4], b[2] + 0.25};
+  const double seat[6] = {b[0], b[1], b[2] + 0.45, b[3], b[4], b[5]};
+  AddBoxTo(mesh, chair, base);
+  AddBoxTo(mesh, chair, seat);
+}
+
+Mesh MakeRoom(const ScanNetFixtureOptions& options) {
   Mesh mesh;
   {
     const int floor = AddObject(&mesh, "floor", 2);
@@ -99,10 +112,12 @@ Mesh MakeRoom() {
     AddRectangle(&mesh, wall, {0, 0, 0}, {0, kFixtureRoomY, 0}, up, 0.2, &welded);
     AddRectangle(&mesh, wall, {kFixtureRoomX, 0, 0}, {0, kFixtureRoomY, 0}, up, 0.2, &welded);
   }
-  AddBox(&mesh, "office chair", 5, kFixtureChair);
+  AddChair(&mesh, kFixtureChair, options.split_chairs);
   AddBox(&mesh, "coffee table", 7, kFixtureTable);
   AddBox(&mesh, "trash can", 39, kFixtureTrashCan);
   AddBox(&mesh, "", 0, kFixtureUnannotated);
+  // Last, so that the default fixture's objects keep their order and names.
+  if (options.second_chair) AddChair(&mesh, kFixtureSecondChair, options.split_chairs);
   return mesh;
 }
 
@@ -137,7 +152,7 @@ std::string WriteScanNetFixture(const std::string& parent_dir, const std::string
                                 const ScanNetFixtureOptions& options) {
   const fs::path dir = fs::path(parent_dir) / scan_id;
   fs::create_directories(dir);
-  const Mesh mesh = MakeRoom();
+  const Mesh mesh = MakeRoom(options);
   // The file's frame: the levelled room turned about x by the tilt, then shifted and lifted.
   const double a = options.tilt_deg * M_PI / 180.0, c = std::cos(a), s = std::sin(a);
   const Vec3 t = {0.3, -0.2, options.lift_m};

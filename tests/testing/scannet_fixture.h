@@ -13,10 +13,16 @@ struct ScanNetFixtureOptions {
   bool axis_alignment = true;   // ID.txt with axisAlignment
   double tilt_deg = 4.0;        // rotation of the scan about x (0: only lifted and shifted)
   double lift_m = 0.8;          // height of the scan's floor in its file
+  // Each chair as two pieces, as ScanNet meshes have them: its base (z 0 - 0.25) and, 20 cm above,
+  // its seat and back (z 0.45 - 0.9), not connected. Its bounds stay kFixtureChair.
+  bool split_chairs = false;
+  // A second chair beside the first, 20 cm away (kFixtureSecondChair).
+  bool second_chair = false;
 };
 
 // The levelled boxes the fixture holds (x0 y0 z0 x1 y1 z1), for tests to compare against.
 constexpr double kFixtureChair[6] = {0.8, 0.8, 0.0, 1.2, 1.2, 0.9};
+constexpr double kFixtureSecondChair[6] = {1.4, 0.8, 0.0, 1.8, 1.2, 0.9};
 constexpr double kFixtureTable[6] = {2.2, 1.0, 0.0, 3.2, 1.8, 0.75};
 constexpr double kFixtureTrashCan[6] = {3.4, 2.4, 0.0, 3.8, 2.8, 0.4};
 constexpr double kFixtureUnannotated[6] = {0.4, 2.3, 0.0, 0.8, 2.7, 0.5};

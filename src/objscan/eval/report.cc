@@ -155,6 +155,16 @@ RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, co
       }
     }
   }
+  if (j.contains("unreachable") && j["unreachable"].is_object()) {
+    const Json& u = j["unreachable"];
+    r.unreachable_frontier_area_m2 = Num(u, "frontier_area_m2");
+    r.unreachable_frontiers = u.contains("frontiers") && u["frontiers"].is_array() ? static_cast<int>(u["frontiers"].size()) : 0;
+    if (u.contains("objects") && u["objects"].is_array()) {
+      for (const Json& id : u["objects"]) {
+        if (id.is_number_integer()) r.objects_left.push_back(id.get<int>());
+      }
+    }
+  }
   if (j.contains("metrics") && j["metrics"].is_object()) {
     const Json& m = j["metrics"];
     r.has_metrics = true;
@@ -207,6 +217,26 @@ RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, co
         r.instances.push_back(c);
       }
       AnalyseRunErrors(j, source, &r);
+    }
+    if (m.contains("reachable") && m["reachable"].is_object()) {
+      r.has_reachable = true;
+      r.ground_truth_reachable = Int(m["reachable"], "ground_truth_objects");
+      r.recall_reachable = Num(m["reachable"], "recall");
+      r.precision_reachable = Num(m["reachable"], "precision");
+    }
+    if (m.contains("unreachable_rooms") && m["unreachable_rooms"].is_array()) {
+      for (const Json& u : m["unreachable_rooms"]) {
+        if (!u.is_object()) continue;
+        RunSummary::UnreachableRoomSummary room;
+        room.room = Int(u, "room");
+        room.area_m2 = Num(u, "area_m2");
+        if (u.contains("objects") && u["objects"].is_array()) {
+          for (const Json& o : u["objects"]) {
+            if (o.is_object()) room.objects.push_back(o.value("name", std::string()) + " (" + o.value("category", std::string()) + ")");
+          }
+        }
+        r.unreachable_rooms.push_back(room);
+      }
     }
     if (m.contains("rand_index_per_view") && m["rand_index_per_view"].is_array()) {
       for (const Json& p : m["rand_index_per_view"]) {
@@ -265,6 +295,36 @@ void NameRun(const fs::path& run_dir, std::string* scene_id, std::string* method
 }
 
 }  // namespace
+
+namespace {
+
+// Whether a run.json or failed.json lies below `dir` (report/ folders skipped, as CollectRuns does).
+bool HoldsRun(const std::string& dir) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (ec) break;
+    if (it->is_directory() && it->path().filename() == "report") {
+      it.disable_recursion_pending();
+      continue;
+    }
+    const std::string name = it->path().filename().string();
+    if (it->is_regular_file() && (name == "run.json" || name == "failed.json")) return true;
+  }
+  if (ec) throw InputError(dir + ": cannot list: " + ec.message());
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> FoldersWithoutRuns(const std::vector<std::string>& dirs) {
+  std::vector<std::string> empty;
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw InputError(dir + ": folder not found");
+    if (!HoldsRun(dir)) empty.push_back(dir);
+  }
+  return empty;
+}
 
 std::vector<RunSummary> CollectRuns(const std::vector<std::string>& dirs) {
   std::vector<fs::path> files;
@@ -780,6 +840,29 @@ std::string ReportJson(const Report& report) {
     }
   }
   j["table1"] = table1;
+  // The runs that could not reach every room, frontier or object (the markdown's section of that name).
+  Json unreachable = Json::array();
+  for (const auto& r : report.runs) {
+    if (r.failed || !r.ReachedLess()) continue;
+    Json rooms = Json::array();
+    for (const auto& u : r.unreachable_rooms) {
+      rooms.push_back(Json{{"room", u.room}, {"area_m2", u.area_m2}, {"objects", u.objects}});
+    }
+    Json entry{{"scene", r.scene_id},
+               {"method", r.method},
+               {"terminated", r.terminated},
+               {"rooms", rooms},
+               {"frontiers", r.unreachable_frontiers},
+               {"frontier_area_m2", r.unreachable_frontier_area_m2},
+               {"objects_left", r.objects_left}};
+    if (r.has_reachable) {
+      entry["reachable"] = Json{{"ground_truth_objects", r.ground_truth_reachable},
+                                {"recall", r.recall_reachable},
+                                {"precision", r.precision_reachable}};
+    }
+    unreachable.push_back(entry);
+  }
+  j["unreachable"] = unreachable;
   // Table 2.
   Json table2 = Json::array();
   for (const auto& o : report.object_categories) {
@@ -1177,6 +1260,37 @@ std::string ReportMarkdown(const Report& report) {
       }
     }
     md << " |\n";
+  }
+  if (std::any_of(report.runs.begin(), report.runs.end(), [](const RunSummary& r) { return r.ReachedLess(); })) {
+    // Said apart so that a run's totals are not read as the robot's failure where it could not go.
+    md << "\n## What the runs could not reach\n\n"
+          "Rooms the robot could not drive into from its start (ground truth: closed doors, gaps narrower than the "
+          "robot) with their objects, recall and precision over the other rooms, and what its own map left out of "
+          "reach at the end (floor frontiers no path reaches, objects no reachable view shows).\n\n"
+          "| Scene | Method | terminated | unreachable rooms (objects) | recall / precision over reachable rooms | "
+          "unreachable frontiers | objects left |\n|---|---|---|---|---|---|---|\n";
+    for (const auto& r : report.runs) {
+      if (r.failed || !r.ReachedLess()) continue;
+      std::string rooms;
+      for (const auto& u : r.unreachable_rooms) {
+        rooms += (rooms.empty() ? "" : "; ") + std::string("room ") + std::to_string(u.room) + " (" + Fix(u.area_m2, 1) +
+                 " m2): ";
+        for (std::size_t k = 0; k < u.objects.size(); ++k) rooms += (k ? ", " : "") + u.objects[k];
+        if (u.objects.empty()) rooms += "no object";
+      }
+      std::string left;
+      for (std::size_t k = 0; k < r.objects_left.size(); ++k) left += (k ? ", " : "") + std::to_string(r.objects_left[k]);
+      md << "| " << r.scene_id << " | `" << r.method << "` | " << r.terminated << " | " << (rooms.empty() ? "-" : rooms)
+         << " | "
+         << (r.has_reachable ? Pct(r.recall_reachable) + " / " + Pct(r.precision_reachable) + " (" +
+                                   std::to_string(r.ground_truth_reachable) + " objects)"
+                             : std::string("-"))
+         << " | "
+         << (r.unreachable_frontiers ? std::to_string(r.unreachable_frontiers) + " (" +
+                                           Fix(r.unreachable_frontier_area_m2, 2) + " m2)"
+                                     : std::string("-"))
+         << " | " << (left.empty() ? "-" : left) << " |\n";
+    }
   }
   md << "\n## Plots\n\n";
   for (const char* p : {"table1_recognition", "fig10a_rand_index", "fig10b_rand_index_views", "fig11a_coverage_rate_views",

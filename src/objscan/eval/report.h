@@ -69,12 +69,32 @@ struct RunSummary {
   bool has_error_analysis = false;
   ErrorBreakdown errors;
   ConfusionMatrix confusion;
+  // What the run could not reach (absent from run.json files written before these were recorded):
+  // the robot's own account (unreachable frontiers, objects left for want of a reachable view) and
+  // the ground truth's (rooms behind closed doors, with recall and precision over the other rooms).
+  int unreachable_frontiers = 0;
+  double unreachable_frontier_area_m2 = 0.0;
+  std::vector<int> objects_left;
+  struct UnreachableRoomSummary {
+    int room = 0;
+    double area_m2 = 0.0;
+    std::vector<std::string> objects;  // "name (category)"
+  };
+  std::vector<UnreachableRoomSummary> unreachable_rooms;
+  bool has_reachable = false;
+  int ground_truth_reachable = 0;
+  double recall_reachable = 0, precision_reachable = 0;
+  bool ReachedLess() const { return unreachable_frontiers > 0 || !objects_left.empty() || !unreachable_rooms.empty(); }
 };
 
 // Parses run.json text. `scene_id` and `method` name the run (from its folder). Throws InputError
 // naming `source` when the text is not a run.json.
 RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, const std::string& method,
                         const std::string& source);
+
+// The folders of `dirs` below which there is no run.json or failed.json (a typo, an empty or
+// unfinished folder); `objscan report` refuses them. Throws InputError for a folder that does not exist.
+std::vector<std::string> FoldersWithoutRuns(const std::vector<std::string>& dirs);
 
 // Every run under the folders (searched recursively; report/ folders skipped). A run folder
 // .../runs/<scene-id>/<method>/ names its scene and method; any other run.json is method "ours" with

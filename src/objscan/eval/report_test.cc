@@ -373,6 +373,61 @@ TEST(ReportTest, ShardsMergeToTheSameReportAsOneBench) {
   EXPECT_NE(whole, one);
 }
 
+TEST(ReportTest, WhatRunsCouldNotReachIsListedApart) {
+  TempDir dir;
+  Fixture house;
+  house.spec = "house.world";
+  nlohmann::json j = nlohmann::json::parse(house.Json());
+  j["unreachable"] = {{"frontier_area_m2", 0.35},
+                      {"frontiers", nlohmann::json::array({{{"xy_m", {1.0, 2.0}}, {"cells", 140}, {"area_m2", 0.35}}})},
+                      {"objects", {17, 42}}};
+  j["metrics"]["reachable"] = {{"ground_truth_objects", 3}, {"output_objects", 8}, {"true_positives", 2},
+                               {"recall", 2.0 / 3.0}, {"precision", 0.25}};
+  j["metrics"]["unreachable_rooms"] = nlohmann::json::array(
+      {{{"room", 1}, {"area_m2", 20.3}, {"center_m", {-6.3, 4.8}},
+        {"objects", nlohmann::json::array({{{"instance", 9}, {"name", "Bed_01_001"}, {"category", "bed"}}})}}});
+  WriteText(dir.path() / "house" / "run.json", j.dump(2));
+  WriteText(dir.path() / "room" / "run.json", Fixture().Json());  // reached everything: not listed
+  const std::vector<RunSummary> runs = CollectRuns({dir.path().string()});
+  ASSERT_EQ(runs.size(), 2u);
+  const RunSummary& r = runs[0].scene_id == "house" ? runs[0] : runs[1];
+  EXPECT_TRUE(r.ReachedLess());
+  EXPECT_EQ(r.unreachable_frontiers, 1);
+  EXPECT_DOUBLE_EQ(r.unreachable_frontier_area_m2, 0.35);
+  EXPECT_EQ(r.objects_left, (std::vector<int>{17, 42}));
+  ASSERT_EQ(r.unreachable_rooms.size(), 1u);
+  EXPECT_EQ(r.unreachable_rooms[0].objects, (std::vector<std::string>{"Bed_01_001 (bed)"}));
+  EXPECT_TRUE(r.has_reachable);
+  EXPECT_EQ(r.ground_truth_reachable, 3);
+  const Report report = BuildReport(runs);
+  const std::string md = ReportMarkdown(report);
+  EXPECT_NE(md.find("## What the runs could not reach"), std::string::npos);
+  EXPECT_NE(md.find("| house | `ours` | done | room 1 (20.3 m2): Bed_01_001 (bed) | 66.67% / 25.00% (3 objects) | "
+                    "1 (0.35 m2) | 17, 42 |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("| room | `ours` | done | -"), std::string::npos);
+  const nlohmann::json results = nlohmann::json::parse(ReportJson(report));
+  ASSERT_EQ(results["unreachable"].size(), 1u);
+  EXPECT_EQ(results["unreachable"][0]["scene"], "house");
+  EXPECT_EQ(results["unreachable"][0]["objects_left"], nlohmann::json({17, 42}));
+  // A report of runs that reached everything has no such section.
+  EXPECT_EQ(ReportMarkdown(BuildReport({runs[0].scene_id == "room" ? runs[0] : runs[1]})).find("could not reach"),
+            std::string::npos);
+}
+
+TEST(ReportTest, FoldersWithoutRunsAreNamed) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "empty" / "sub");
+  WriteText(dir.path() / "bench" / "runs" / "a" / "ours" / "failed.json", "{\"exit_code\": 1}");
+  WriteText(dir.path() / "old" / "report" / "run.json", Fixture().Json());  // a report folder is no run
+  EXPECT_EQ(FoldersWithoutRuns({(dir.path() / "bench").string()}).size(), 0u);
+  EXPECT_EQ(FoldersWithoutRuns({(dir.path() / "empty").string(), (dir.path() / "bench").string(),
+                                (dir.path() / "old").string()}),
+            (std::vector<std::string>{(dir.path() / "empty").string(), (dir.path() / "old").string()}));
+  EXPECT_THROW(FoldersWithoutRuns({(dir.path() / "typo").string()}), InputError);
+}
+
 TEST(ReportTest, FailedRunsAreReported) {
   TempDir dir;
   Fixture f;

@@ -8,6 +8,7 @@
 #include "objscan/eval/exposure.h"
 #include "objscan/eval/ground_truth_votes.h"
 #include "objscan/eval/observability.h"
+#include "objscan/eval/reachability.h"
 #include "objscan/eval/rooms.h"
 #include "objscan/geometry/voxel_key.h"
 #include "objscan/mapping/surface_map.h"
@@ -364,6 +365,44 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
   }
   const RecognitionResult rec = MatchRecognitions(truth, outputs, m.database_categories);
   out.rooms = m.PerRoom(outputs, output_room, rec);
+  {
+    // The rooms reachable from where the robot started, and recognition over them.
+    RoomReachability reach;
+    if (!record.trajectory.empty()) {
+      RoomReachabilityOptions options;
+      options.robot_radius_m = m.config.robot.base_radius_m;
+      options.robot_height_m = m.config.robot.height_m;
+      options.navigation = m.config.navigation;
+      const Eigen::Vector2d start(record.trajectory.front().x_m, record.trajectory.front().y_m);
+      reach = ReachableRooms(m.scene, m.rooms, start, options);
+    }
+    const auto room_of = [&](int instance) {
+      const auto it = m.room_of_instance.find(instance);
+      return it == m.room_of_instance.end() ? -1 : it->second;
+    };
+    for (std::size_t r = 0; r < reach.reachable.size(); ++r) {
+      if (reach.reachable[r]) continue;
+      UnreachableRoom u;
+      u.room = m.rooms.rooms()[r].id;
+      u.area_m2 = m.rooms.rooms()[r].area_m2;
+      u.center_m = m.rooms.rooms()[r].center_m;
+      for (const auto& o : m.scene.objects()) {
+        if (!o.IsStructural() && room_of(o.instance_id) == static_cast<int>(r)) {
+          u.objects.push_back({o.instance_id, o.name, o.category});
+        }
+      }
+      out.unreachable_rooms.push_back(std::move(u));
+    }
+    std::vector<GroundTruthInstance> reachable_truth;
+    for (const GroundTruthInstance& g : truth) {
+      if (reach.Reachable(room_of(g.instance_id))) reachable_truth.push_back(g);
+    }
+    std::vector<OutputObject> reachable_outputs;
+    for (std::size_t o = 0; o < outputs.size(); ++o) {
+      if (reach.Reachable(output_room[o])) reachable_outputs.push_back(outputs[o]);
+    }
+    out.reachable = MatchRecognitions(reachable_truth, reachable_outputs, m.database_categories).all;
+  }
   out.recall = rec.all.Recall();
   out.precision = rec.all.Precision();
   out.recall_floor = rec.floor.Recall();

@@ -51,6 +51,20 @@ struct RoomMetrics {
   RecognitionCounts counts;
 };
 
+// A room the robot could not drive into from where it started (a closed door; reachability.h), and
+// the ground-truth objects whose centre lies in it.
+struct UnreachableRoom {
+  int room = 0;
+  double area_m2 = 0.0;
+  Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
+  struct Object {
+    int instance = world::kNoInstance;
+    std::string name;
+    world::Category category = world::Category::kOther;
+  };
+  std::vector<Object> objects;
+};
+
 struct RunMetrics {
   double recall = 0.0, precision = 0.0;
   double recall_floor = 0.0, precision_floor = 0.0;
@@ -78,6 +92,10 @@ struct RunMetrics {
   // Per room, when the scene has two or more rooms holding ground-truth objects (a house); objects
   // in no room (outside the partitioned floor) count in no room.
   std::vector<RoomMetrics> rooms;
+  // Rooms the robot could not reach, and recognition over the ground truth and outputs of the rooms
+  // it could (objects in no room count as reachable): the totals when every room is reachable.
+  std::vector<UnreachableRoom> unreachable_rooms;
+  RecognitionCounts reachable;
 };
 
 class RunEvaluator {

@@ -68,6 +68,18 @@ std::string RunJson(const RunOutputInputs& in) {
   j["terminated"] = scanning::TerminationName(r.terminated);
   j["explored_area_m2"] = std::round(r.explored_area_m2 * 100.0) / 100.0;
   j["step_budget"] = r.step_budget;
+  {
+    // What the robot's own map left out of reach at the end (run_record.h).
+    Json frontiers = Json::array();
+    for (const auto& f : r.unreachable.frontiers) {
+      frontiers.push_back(Json{{"xy_m", {std::round(f.x_m * 100.0) / 100.0, std::round(f.y_m * 100.0) / 100.0}},
+                               {"cells", f.cells},
+                               {"area_m2", std::round(f.area_m2 * 1e4) / 1e4}});
+    }
+    j["unreachable"] = Json{{"frontier_area_m2", std::round(r.unreachable.frontier_area_m2 * 1e4) / 1e4},
+                            {"frontiers", frontiers},
+                            {"objects", r.unreachable.objects}};
+  }
   Json steps = Json::array();
   for (const auto& s : r.steps) {
     Json step{{"index", s.index},
@@ -191,6 +203,24 @@ std::string RunJson(const RunOutputInputs& in) {
       }
       metrics["rooms"] = rooms;
     }
+    // Over the rooms the robot could reach from its start (eval/reachability.h), beside the totals.
+    metrics["reachable"] = Json{{"ground_truth_objects", m.reachable.ground_truth},
+                                {"output_objects", m.reachable.outputs},
+                                {"true_positives", m.reachable.true_positives},
+                                {"recall", m.reachable.Recall()},
+                                {"precision", m.reachable.Precision()}};
+    Json unreachable_rooms = Json::array();
+    for (const UnreachableRoom& u : m.unreachable_rooms) {
+      Json objects = Json::array();
+      for (const auto& o : u.objects) {
+        objects.push_back(Json{{"instance", o.instance}, {"name", o.name}, {"category", world::CategoryName(o.category)}});
+      }
+      unreachable_rooms.push_back(Json{{"room", u.room},
+                                       {"area_m2", u.area_m2},
+                                       {"center_m", {u.center_m.x(), u.center_m.y()}},
+                                       {"objects", objects}});
+    }
+    metrics["unreachable_rooms"] = unreachable_rooms;
     Json instances = Json::array();
     for (const auto& o : m.instances) {
       instances.push_back(Json{{"instance", o.instance},

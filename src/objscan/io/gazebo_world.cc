@@ -190,7 +190,7 @@ class WorldLoader {
       : path_(std::move(path)), options_(options), category_map_(category_map) {
     world_dir_ = fs::path(path_).parent_path().string();
     if (world_dir_.empty()) world_dir_ = ".";
-    search_path_ = ModelSearchPath(world_dir_, options_.model_path);
+    search_ = MakeUriSearchPath(path_, options_.model_path);
   }
 
   world::Scene Load() {
@@ -239,13 +239,21 @@ class WorldLoader {
     // Expand every top-level model first: their frames may be referred to by each other's poses.
     std::vector<std::unique_ptr<ModelNode>> nodes;
     std::set<std::string> seen_names;
+    // Models that lost all their geometry to missing meshes or includes (allow_missing), and those kept.
+    int models_lost = 0, models_kept = 0;
+    std::map<const ModelNode*, std::size_t> missing_while_expanding;
     for (const XMLElement* e : model_elems) {
+      const std::size_t missing_before = missing_.size();
       std::unique_ptr<ModelNode> node = std::string(e->Name()) == "include"
                                             ? ExpandInclude(*e, path_, 0)
                                             : BuildNode(*e, path_, ReadPose(*e, Where(NameOf(*e, path_))),
                                                         Attribute(*e, "placement_frame"), 0);
-      if (node == nullptr) continue;  // unresolved include, listed (allow_missing)
+      if (node == nullptr) {  // unresolved include, listed (allow_missing)
+        ++models_lost;
+        continue;
+      }
       if (deleted.count(node->name)) continue;
+      missing_while_expanding[node.get()] = missing_.size() - missing_before;
       if (!seen_names.insert(node->name).second) throw InputError(Where(node->name) + ": duplicate model name");
       world_frames.Add(node->name, node->pose, kWorldFrame, Where(node->name), Placement(*node));
       world_frames.AddScope(node->name, node->frames.get());
@@ -261,15 +269,31 @@ class WorldLoader {
       const StatePoses* state_poses = StateOf(node->name);
       build.T_world_model = state_poses != nullptr ? state_poses->T_world_model
                                                    : world_frames.Resolve(node->name, Where(node->name));
+      const std::size_t missing_before = missing_.size();
       AddModelContent(*node, Pose3::Identity(), state_poses, &build);
       if (build.has_plane) plane_z_m = build.plane_z_m;
-      if (build.mesh.Empty()) continue;  // ground_plane, collision-only or fully missing models
+      const bool lost_some = missing_.size() > missing_before || missing_while_expanding[node.get()] > 0;
+      if (build.mesh.Empty()) {  // ground_plane, collision-only or fully missing models
+        models_lost += lost_some ? 1 : 0;
+        continue;
+      }
+      ++models_kept;
       world::SceneObject object;
       object.name = build.name;
       object.T_world_object = build.T_world_model;
       object.mesh = std::move(build.mesh);
       Classify(build, &object);
       objects.push_back(std::move(object));
+    }
+
+    // A world that kept too few of its models (a wrong model path) would be scanned as an empty room.
+    const int models = models_kept + models_lost;
+    if (models_lost > 0 && models_kept < options_.min_loaded_model_fraction * models) {
+      throw InputError(path_ + ": only " + std::to_string(models_kept) + " of " + std::to_string(models) +
+                       " models could be loaded (" + std::to_string(missing_.size()) +
+                       " meshes or includes missing; the first: " + (first_missing_.empty() ? missing_.front() : first_missing_) +
+                       "); fix the paths, or load it anyway with --allow-missing given twice "
+                       "(scene.min_loaded_model_fraction=0)");
     }
 
     // The floor first (structure), then the models in file order.
@@ -427,12 +451,13 @@ class WorldLoader {
         RejectIfGeometry(*e, file, "<include> '" + uri + "'");
       }
     }
-    const std::string folder_dir = fs::path(file).parent_path().string();
-    const std::optional<std::string> target = ResolveIncludeTarget(uri, folder_dir.empty() ? "." : folder_dir);
+    const UriResolution resolved = ResolveIncludeUri(uri, file, search_);
+    const std::optional<std::string>& target = resolved.path;
     if (!target) {
-      const std::string message = where + ": cannot resolve " + uri +
-                                  " (searched the world's folder, the model path, $OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH)";
+      const std::string message = where + ": cannot resolve <include><uri> " + uri + "; searched " +
+                                  JoinSearched(resolved.searched) + SearchRule(uri);
       if (!options_.allow_missing) throw InputError(message);
+      if (first_missing_.empty()) first_missing_ = message;
       missing_.push_back(uri + " (<include> in " + file + ")");
       return nullptr;
     }
@@ -454,16 +479,15 @@ class WorldLoader {
     return node;
   }
 
-  // A model folder (model://NAME, file://DIR, DIR) or an SDF file given by path.
-  std::optional<std::string> ResolveIncludeTarget(const std::string& uri, const std::string& file_dir) const {
-    if (StartsWith(uri, "model://")) return ResolveModelFolder(uri, search_path_);
-    if (StartsWith(uri, "package://")) return ResolveModelFolder("model://" + uri.substr(10), search_path_);
-    std::string path = StartsWith(uri, "file://") ? uri.substr(7) : uri;
-    fs::path p(path);
-    if (p.is_relative()) p = fs::path(file_dir) / p;
-    std::error_code ec;
-    if (fs::exists(p, ec)) return p.lexically_normal().string();
-    return std::nullopt;
+  // Which lists the folders of an unresolved URI came from (model_path.h), for the user to fix.
+  static std::string SearchRule(const std::string& uri) {
+    if (StartsWith(uri, "model://") || StartsWith(uri, "package://")) {
+      return " (the world's folder, --model-path, $OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH)";
+    }
+    const std::string path = StartsWith(uri, "file://") ? uri.substr(7) : uri;
+    if (fs::path(path).is_absolute()) return " (an absolute path)";
+    return " (the naming file's folder, $GAZEBO_RESOURCE_PATH, the parent of each model path folder, the world's "
+           "package root)";
   }
 
   // model.config's <sdf> entry (the last listed), else model.sdf.
@@ -628,7 +652,8 @@ class WorldLoader {
         }
         scale = Eigen::Vector3d(v[0], v[1], v[2]);
       }
-      const geometry::TriangleMesh* mesh = MeshFor(uri, where, file, build->name);
+      const geometry::TriangleMesh* mesh =
+          MeshFor(uri, where, file, shape->FirstChildElement("uri")->GetLineNum(), build->name);
       if (mesh == nullptr) return;  // recorded as missing
       T = T * Eigen::Scaling(scale);
       geometry::Append(geometry::Transformed(*mesh, T), &build->mesh);
@@ -645,15 +670,16 @@ class WorldLoader {
   // The mesh behind a URI (cached: walls and repeated furniture share files). nullptr when missing
   // and allow_missing is set. Relative paths resolve against the folder of the file naming them.
   const geometry::TriangleMesh* MeshFor(const std::string& uri, const std::string& where, const std::string& file,
-                                        const std::string& model) {
-    std::string file_dir = fs::path(file).parent_path().string();
-    if (file_dir.empty()) file_dir = ".";
-    std::optional<std::string> resolved = ResolveModelUri(uri, file_dir, search_path_);
-    if (!resolved && StartsWith(uri, "package://")) resolved = ResolveModelUri("model://" + uri.substr(10), file_dir, search_path_);
+                                        int line, const std::string& model) {
+    const UriResolution resolution = ResolveFileUri(uri, file, search_);
+    const std::optional<std::string>& resolved = resolution.path;
     if (!resolved) {
-      const std::string message = where + ": cannot resolve " + uri +
-                                  " (searched the world's folder, the model path, $OBJSCAN_MODEL_PATH, $GAZEBO_MODEL_PATH)";
+      // The world names the model; the file naming the mesh (often an included model.sdf) is what to fix.
+      const std::string message = where + ": cannot resolve <mesh><uri> " + uri + " (" +
+                                  (file == path_ ? "" : "in " + file + ", ") + "line " + std::to_string(line) +
+                                  "); searched " + JoinSearched(resolution.searched) + SearchRule(uri);
       if (!options_.allow_missing) throw InputError(message);
+      if (first_missing_.empty()) first_missing_ = message;
       missing_.push_back(uri + " (model '" + model + "')");
       return nullptr;
     }
@@ -729,7 +755,8 @@ class WorldLoader {
   const SceneLoadOptions& options_;
   CategoryMap* category_map_;
   std::string world_dir_;
-  std::vector<std::string> search_path_;
+  UriSearchPath search_;
+  std::string first_missing_;  // the first unresolved URI's whole message (allow_missing)
   std::map<std::string, StatePoses> state_;
   std::map<std::string, std::unique_ptr<XMLDocument>> docs_;
   std::map<const ModelNode*, std::string> include_uris_;

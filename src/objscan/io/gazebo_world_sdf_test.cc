@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <optional>
 
 #include "objscan/common/error.h"
 #include "objscan/io/gazebo_world.h"
@@ -63,6 +65,56 @@ void WriteAwsStyleModel(const std::string& models_dir, const std::string& name, 
                 "_visual.DAE</uri></mesh></geometry></visual></link><static>1</static></model></sdf>\n");
   WriteText(models_dir + "/" + name + "/meshes/" + name + "_visual.DAE", ColladaCube());
 }
+
+// A model folder as the AWS RoboMaker bookstore has them: its mesh named by a file:// URI relative to
+// the package root (file://models/NAME/meshes/NAME_visual.DAE), which Gazebo finds through
+// GAZEBO_RESOURCE_PATH. The mesh is written below `mesh_root` (the package root, usually the parent
+// of `models_dir`).
+void WriteBookstoreStyleModel(const std::string& models_dir, const std::string& name, const std::string& mesh_root) {
+  WriteText(models_dir + "/" + name + "/model.config",
+            "<?xml version='1.0'?><model><name>" + name + "</name><sdf version='1.6'>model.sdf</sdf></model>\n");
+  WriteText(models_dir + "/" + name + "/model.sdf",
+            "<?xml version=\"1.0\" ?>\n<sdf version=\"1.6\">\n  <model name=\"" + name +
+                "\">\n    <link name=\"link\">\n      <visual name=\"visual\">\n        <geometry>\n          <mesh>\n"
+                "            <uri>file://models/" + name + "/meshes/" + name + "_visual.DAE</uri>\n"
+                "          </mesh>\n        </geometry>\n      </visual>\n    </link>\n    <static>1</static>\n"
+                "  </model>\n</sdf>\n");
+  WriteText(mesh_root + "/models/" + name + "/meshes/" + name + "_visual.DAE", ColladaCube());
+}
+
+// The bookstore's world: two models wrapping an include (<pose frame=''> after it), one bare include.
+std::string BookstoreWorld() {
+  return World("<model name='ground_plane'><static>1</static><link name='link'><visual name='visual'><geometry>"
+               "<plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></visual></link></model>\n"
+               "<model name='AirConditionerC_01_001'><include><uri>model://aws_robomaker_retail_AirConditionerC_01"
+               "</uri></include><pose frame=''>7 1 2 0 0 0</pose></model>\n"
+               "<model name='BookE_01_001'><include><uri>model://aws_robomaker_retail_BookE_01</uri></include>"
+               "<pose frame=''>5 -2 0.9 0 0 0</pose></model>\n"
+               "<include><uri>model://aws_robomaker_retail_BookE_01</uri><name>BookE_01_002</name>"
+               "<pose>-5 3 0.9 0 0 0</pose></include>\n",
+               "1.6");
+}
+
+// Sets an environment variable for the scope of a test and puts the old value back.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::optional<std::string>& value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    value ? setenv(name, value->c_str(), 1) : unsetenv(name);
+  }
+  ~ScopedEnv() { old_ ? setenv(name_, old_->c_str(), 1) : unsetenv(name_); }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+// No Gazebo path variable of the machine running the tests may change what they find.
+struct CleanGazeboEnv {
+  ScopedEnv resource{"GAZEBO_RESOURCE_PATH", std::nullopt};
+  ScopedEnv model{"GAZEBO_MODEL_PATH", std::nullopt};
+  ScopedEnv objscan{"OBJSCAN_MODEL_PATH", std::nullopt};
+};
 
 // The world's bounds of model `name` (which must exist).
 geometry::Aabb3 BoundsOf(const world::Scene& scene, const std::string& name) {
@@ -169,6 +221,118 @@ TEST(GazeboSdfTest, PlacementFramePlacesTheNamedFrame) {
   const world::Scene scene = LoadGazeboWorld(dir.File("w.world"), options);
   // The shelf's bottom frame is put at (3, 0, 0): the cube spans z in [0, 1].
   ExpectBox(BoundsOf(scene, "shelf"), {2.5, -0.5, 0}, {3.5, 0.5, 1});
+}
+
+TEST(GazeboSdfTest, BookstoreFileUrisResolveFromTheParentOfTheModelPath) {
+  CleanGazeboEnv env;
+  TempDir dir;
+  const std::string pkg = dir.File("aws-robomaker-bookstore-world");
+  for (const char* name : {"aws_robomaker_retail_AirConditionerC_01", "aws_robomaker_retail_BookE_01"}) {
+    WriteBookstoreStyleModel(pkg + "/models", name, pkg);
+  }
+  WriteText(pkg + "/worlds/bookstore.world", BookstoreWorld());
+  SceneLoadOptions options;
+  options.model_path = pkg + "/models";  // as the launch file sets GAZEBO_MODEL_PATH
+  const world::Scene scene = LoadGazeboWorld(pkg + "/worlds/bookstore.world", options);
+  EXPECT_TRUE(scene.missing_meshes().empty());
+  ASSERT_EQ(scene.objects().size(), 4u);  // the floor and three models
+  ExpectBox(BoundsOf(scene, "AirConditionerC_01_001"), {7, 1, 2}, {8, 2, 3});
+  ExpectBox(BoundsOf(scene, "BookE_01_001"), {5, -2, 0.9}, {6, -1, 1.9});
+  ExpectBox(BoundsOf(scene, "BookE_01_002"), {-5, 3, 0.9}, {-4, 4, 1.9});
+  // The model path given twice over (repeated --model-path), or through $GAZEBO_MODEL_PATH: the same.
+  options.model_path = dir.File("nowhere") + ":" + pkg + "/models";
+  EXPECT_EQ(LoadGazeboWorld(pkg + "/worlds/bookstore.world", options).objects().size(), 4u);
+  ScopedEnv model_path("GAZEBO_MODEL_PATH", pkg + "/models");
+  EXPECT_EQ(LoadGazeboWorld(pkg + "/worlds/bookstore.world", SceneLoadOptions()).objects().size(), 4u);
+}
+
+TEST(GazeboSdfTest, BookstoreFileUrisResolveThroughResourcePathAndPackageRoot) {
+  CleanGazeboEnv env;
+  TempDir dir;
+  // The model folders (model.sdf) in one place, the meshes under another root: only that root's rule
+  // can find them.
+  const auto write = [&](const std::string& mesh_root) {
+    for (const char* name : {"aws_robomaker_retail_AirConditionerC_01", "aws_robomaker_retail_BookE_01"}) {
+      WriteBookstoreStyleModel(dir.File("sdf/models"), name, mesh_root);
+    }
+  };
+  SceneLoadOptions options;
+  options.model_path = dir.File("sdf/models");
+  {
+    // $GAZEBO_RESOURCE_PATH (colon-separated, searched in order).
+    write(dir.File("resources"));
+    WriteText(dir.File("plain/bookstore.world"), BookstoreWorld());
+    ScopedEnv resource("GAZEBO_RESOURCE_PATH", dir.File("empty") + ":" + dir.File("resources"));
+    EXPECT_EQ(LoadGazeboWorld(dir.File("plain/bookstore.world"), options).objects().size(), 4u);
+  }
+  {
+    // The world's package root: the nearest folder above the world holding a package.xml.
+    write(dir.File("pkg"));
+    WriteText(dir.File("pkg/package.xml"), "<package format='2'><name>bookstore</name></package>\n");
+    WriteText(dir.File("pkg/worlds/deeper/bookstore.world"), BookstoreWorld());
+    EXPECT_EQ(LoadGazeboWorld(dir.File("pkg/worlds/deeper/bookstore.world"), options).objects().size(), 4u);
+  }
+  {
+    // Without a package.xml: the parent of the world's folder (PKG of PKG/worlds/x.world).
+    write(dir.File("nopkg"));
+    WriteText(dir.File("nopkg/worlds/bookstore.world"), BookstoreWorld());
+    EXPECT_EQ(LoadGazeboWorld(dir.File("nopkg/worlds/bookstore.world"), options).objects().size(), 4u);
+  }
+}
+
+TEST(GazeboSdfTest, UnresolvableUriNamesTheFileTheElementAndEveryFolderSearched) {
+  CleanGazeboEnv env;
+  TempDir dir;
+  const std::string pkg = dir.File("pkg");
+  WriteBookstoreStyleModel(pkg + "/models", "aws_robomaker_retail_AirConditionerC_01", dir.File("elsewhere"));
+  WriteBookstoreStyleModel(pkg + "/models", "aws_robomaker_retail_BookE_01", dir.File("elsewhere"));
+  WriteText(pkg + "/worlds/bookstore.world", BookstoreWorld());
+  ScopedEnv resource("GAZEBO_RESOURCE_PATH", dir.File("res"));
+  SceneLoadOptions options;
+  options.model_path = pkg + "/models";
+  const std::string world = pkg + "/worlds/bookstore.world";
+  const std::string model_sdf = pkg + "/models/aws_robomaker_retail_AirConditionerC_01/model.sdf";
+  for (const std::string& needle :
+       {world + ": model 'AirConditionerC_01_001' visual 'visual': cannot resolve <mesh><uri> "
+                "file://models/aws_robomaker_retail_AirConditionerC_01/meshes/aws_robomaker_retail_AirConditionerC_01_"
+                "visual.DAE (in " + model_sdf + ", line 8); searched " + pkg +
+                "/models/aws_robomaker_retail_AirConditionerC_01, " + dir.File("res") + ", " + pkg + " (the naming"}) {
+    ExpectInputError([&] { LoadGazeboWorld(world, options); }, needle);
+  }
+  // An include: the model path's folders, in order.
+  WriteText(dir.File("w.world"), World("<include><uri>model://nowhere</uri></include>\n"));
+  ExpectInputError([&] { LoadGazeboWorld(dir.File("w.world"), options); },
+                   "cannot resolve <include><uri> model://nowhere; searched " + dir.path().string() + ", " + pkg +
+                       "/models (the world's folder, --model-path");
+}
+
+TEST(GazeboSdfTest, AllowMissingFailsWhenFewerThanHalfTheModelsAreLeft) {
+  CleanGazeboEnv env;
+  TempDir dir;
+  const std::string pkg = dir.File("pkg");
+  for (const char* name : {"aws_robomaker_retail_AirConditionerC_01", "aws_robomaker_retail_BookE_01"}) {
+    WriteBookstoreStyleModel(pkg + "/models", name, dir.File("elsewhere"));
+  }
+  WriteText(pkg + "/worlds/bookstore.world", BookstoreWorld());
+  SceneLoadOptions options;
+  options.model_path = pkg + "/models";
+  options.allow_missing = true;
+  const std::string world = pkg + "/worlds/bookstore.world";
+  ExpectInputError([&] { LoadGazeboWorld(world, options); },
+                   "bookstore.world: only 0 of 3 models could be loaded (3 meshes or includes missing; the first: ");
+  ExpectInputError([&] { LoadGazeboWorld(world, options); }, "--allow-missing given twice");
+  // Insisting loads the floor alone and lists every mesh it skipped.
+  options.min_loaded_model_fraction = 0.0;
+  const world::Scene scene = LoadGazeboWorld(world, options);
+  EXPECT_EQ(scene.objects().size(), 1u);
+  EXPECT_EQ(scene.missing_meshes().size(), 3u);
+  // Half of them is enough: two of three models found.
+  WriteBookstoreStyleModel(pkg + "/models", "aws_robomaker_retail_BookE_01", pkg);
+  options.min_loaded_model_fraction = 0.5;
+  const world::Scene most = LoadGazeboWorld(world, options);
+  EXPECT_EQ(most.objects().size(), 3u);
+  ASSERT_EQ(most.missing_meshes().size(), 1u);
+  EXPECT_NE(most.missing_meshes()[0].find("AirConditionerC_01_001"), std::string::npos) << most.missing_meshes()[0];
 }
 
 TEST(GazeboSdfTest, FileUrisPlainPathsAndUpperCaseExtensions) {

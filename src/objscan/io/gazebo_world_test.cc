@@ -132,7 +132,7 @@ TEST(GazeboWorldTest, UnresolvedMeshFailsOrIsListedWithAllowMissing) {
   ExpectInputError([&] { LoadGazeboWorld(dir.File("room.world"), SceneLoadOptions()); },
                    "room.world: model '403_0'");
   ExpectInputError([&] { LoadGazeboWorld(dir.File("room.world"), SceneLoadOptions()); },
-                   "cannot resolve model://403/403.dae");
+                   "cannot resolve <mesh><uri> model://403/403.dae");
   SceneLoadOptions options;
   options.allow_missing = true;
   const world::Scene scene = LoadGazeboWorld(dir.File("room.world"), options);

@@ -11,17 +11,14 @@
 #include <unordered_map>
 
 #include "objscan/common/error.h"
-#include "objscan/common/union_find.h"
 #include "objscan/io/ply.h"
+#include "objscan/io/scannet_instances.h"
 
 namespace objscan::io {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kMeshSuffix = "_vh_clean_2.ply";
-// Label noise on the decimated mesh leaves slivers of a few vertices with their own label; they are
-// not objects (no one could scan or recognize them), so components smaller than this are unannotated.
-constexpr std::size_t kMinComponentVertices = 30;
 constexpr int kNoObject = -1;
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
@@ -109,9 +106,8 @@ void InstancesFromAggregation(const std::string& aggregation_path, const std::st
   }
 }
 
-// Ground truth from labels.ply: connected components (over mesh edges) of one NYU40 label.
-void InstancesFromLabels(const std::string& labels_path, const PlyData& mesh, std::vector<Instance>* instances,
-                         std::vector<int>* vertex_instance) {
+// The per-vertex NYU40 labels of labels.ply (0 = none), checked against the mesh.
+std::vector<std::int32_t> ReadVertexLabels(const std::string& labels_path, const PlyData& mesh) {
   const PlyData labelled = ReadPly(labels_path);
   const std::vector<std::int32_t>* labels = nullptr;
   for (const auto& property : labelled.int_properties) {
@@ -122,37 +118,12 @@ void InstancesFromLabels(const std::string& labels_path, const PlyData& mesh, st
     throw InputError(labels_path + ": " + std::to_string(labels->size()) + " labelled vertices for a mesh of " +
                      std::to_string(mesh.points.size()) + " vertices");
   }
-  const int n = static_cast<int>(labels->size());
-  UnionFind components(n);
-  for (const auto& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[k], b = t[(k + 1) % 3];
-      if ((*labels)[a] != 0 && (*labels)[a] == (*labels)[b]) components.Union(a, b);
+  for (const std::int32_t label : *labels) {
+    if (label != 0 && Nyu40ClassName(label).empty()) {
+      throw InputError(labels_path + ": label " + std::to_string(label) + " is not an NYU40 class id (1-40)");
     }
   }
-  std::map<int, std::size_t> size_of_root;
-  for (int v = 0; v < n; ++v) {
-    if ((*labels)[v] != 0) ++size_of_root[components.Find(v)];
-  }
-  std::map<int, int> instance_of_root;
-  std::map<std::string, int> count_of_label;
-  for (const auto& [root, size] : size_of_root) {  // roots in vertex order: a stable numbering
-    if (size < kMinComponentVertices) continue;
-    Instance instance;
-    const int label = (*labels)[root];
-    instance.label = Nyu40ClassName(label);
-    if (instance.label.empty()) throw InputError(labels_path + ": label " + std::to_string(label) + " is not an NYU40 class id (1-40)");
-    instance.name = instance.label + "_" + std::to_string(count_of_label[instance.label]++);
-    std::replace(instance.name.begin(), instance.name.end(), ' ', '_');
-    instance_of_root[root] = static_cast<int>(instances->size());
-    instances->push_back(instance);
-  }
-  vertex_instance->assign(mesh.points.size(), kNoObject);
-  for (int v = 0; v < n; ++v) {
-    if ((*labels)[v] == 0) continue;
-    const auto it = instance_of_root.find(components.Find(v));
-    if (it != instance_of_root.end()) (*vertex_instance)[v] = it->second;
-  }
+  return *labels;
 }
 
 // axisAlignment from the scan's .txt; nullopt when the file or the line is absent.
@@ -262,43 +233,81 @@ world::Scene LoadScanNetScan(const std::string& spec, const SceneLoadOptions& op
   }
 
   std::error_code ec;
+  world::Scene scene(scan_id);
+  // The category of a label, and whether the map knows it (else `other`, listed once per instance).
+  const auto category_of = [&](const std::string& name, const std::string& label) -> std::optional<world::Category> {
+    ModelIdentity identity;
+    identity.name = name;
+    identity.labels = {label};
+    identity.source_dir = dir.string();
+    std::optional<world::Category> category = categories.Lookup(identity);
+    if (!category) {
+      std::string snake = label;
+      std::replace(snake.begin(), snake.end(), ' ', '_');
+      category = world::ParseCategory(snake);
+    }
+    return category;
+  };
+  const auto add_instance = [&](Instance instance, std::vector<Instance>* instances) {
+    const std::optional<world::Category> category = category_of(instance.name, instance.label);
+    if (!category) scene.unmapped_models().push_back(instance.name + " (label '" + instance.label + "')");
+    instance.category = category.value_or(world::Category::kOther);
+    instances->push_back(std::move(instance));
+  };
+
   std::vector<Instance> instances;
   std::vector<int> vertex_instance;
+  std::vector<bool> is_floor(mesh.points.size(), false);
+  const std::optional<Eigen::Matrix4d> axis_alignment = ReadAxisAlignment(meta_path);
   if (fs::is_regular_file(aggregation_path, ec)) {
     if (!fs::is_regular_file(segs_path, ec)) throw InputError(aggregation_path + ": its segments file " + segs_path + " is missing");
-    InstancesFromAggregation(aggregation_path, segs_path, mesh.points.size(), &instances, &vertex_instance);
+    std::vector<Instance> annotated;
+    InstancesFromAggregation(aggregation_path, segs_path, mesh.points.size(), &annotated, &vertex_instance);
+    for (Instance& instance : annotated) add_instance(std::move(instance), &instances);
+    for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+      const int i = vertex_instance[v];
+      is_floor[v] = i != kNoObject && instances[static_cast<std::size_t>(i)].category == world::Category::kFloor;
+    }
+    const Eigen::Affine3d T_level = LevellingTransform(mesh.points, is_floor, axis_alignment);
+    for (auto& p : mesh.points) p = (T_level * p.cast<double>()).cast<float>();
   } else if (fs::is_regular_file(labels_path, ec)) {
-    InstancesFromLabels(labels_path, mesh, &instances, &vertex_instance);
+    // No instances in the files: level the scan on its floor labels, then group the labelled pieces
+    // into objects (scannet_instances.h).
+    const std::vector<std::int32_t> labels = ReadVertexLabels(labels_path, mesh);
+    std::map<std::int32_t, bool> label_is_floor;
+    for (std::size_t v = 0; v < labels.size(); ++v) {
+      if (labels[v] == 0) continue;
+      auto it = label_is_floor.find(labels[v]);
+      if (it == label_is_floor.end()) {
+        const std::string name = Nyu40ClassName(labels[v]);
+        it = label_is_floor.emplace(labels[v], category_of(name, name) == world::Category::kFloor).first;
+      }
+      is_floor[v] = it->second;
+    }
+    const Eigen::Affine3d T_level = LevellingTransform(mesh.points, is_floor, axis_alignment);
+    for (auto& p : mesh.points) p = (T_level * p.cast<double>()).cast<float>();
+    const InferredInstances inferred = InferInstancesFromLabels(mesh.points, mesh.triangles, labels);
+    vertex_instance = inferred.vertex_instance;
+    std::map<std::string, int> count_of_label;
+    for (const int label : inferred.instance_label) {
+      Instance instance;
+      instance.label = Nyu40ClassName(label);
+      instance.name = instance.label + "_" + std::to_string(count_of_label[instance.label]++);
+      std::replace(instance.name.begin(), instance.name.end(), ' ', '_');
+      add_instance(std::move(instance), &instances);
+    }
+    scene.set_instances_inferred(true);
+    scene.load_notes().push_back("instances inferred: no " + fs::path(aggregation_path).filename().string() +
+                                 "; the pieces of one label in " + fs::path(labels_path).filename().string() +
+                                 " closer than a few centimetres or stacked in one footprint are one object");
   } else if (options.allow_missing) {
     vertex_instance.assign(mesh.points.size(), kNoObject);
+    const Eigen::Affine3d T_level = LevellingTransform(mesh.points, is_floor, axis_alignment);
+    for (auto& p : mesh.points) p = (T_level * p.cast<double>()).cast<float>();
   } else {
     throw InputError(mesh_path + ": no ground truth (needs " + fs::path(aggregation_path).filename().string() + " + " +
                      fs::path(segs_path).filename().string() + ", or " + fs::path(labels_path).filename().string() + ")");
   }
-
-  world::Scene scene(scan_id);
-  for (Instance& instance : instances) {
-    ModelIdentity identity;
-    identity.name = instance.name;
-    identity.labels = {instance.label};
-    identity.source_dir = dir.string();
-    std::optional<world::Category> category = categories.Lookup(identity);
-    if (!category) {
-      std::string snake = instance.label;
-      std::replace(snake.begin(), snake.end(), ' ', '_');
-      category = world::ParseCategory(snake);
-      if (!category) scene.unmapped_models().push_back(instance.name + " (label '" + instance.label + "')");
-    }
-    instance.category = category.value_or(world::Category::kOther);
-  }
-
-  std::vector<bool> is_floor(mesh.points.size(), false);
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
-    const int i = vertex_instance[v];
-    is_floor[v] = i != kNoObject && instances[static_cast<std::size_t>(i)].category == world::Category::kFloor;
-  }
-  const Eigen::Affine3d T_level = LevellingTransform(mesh.points, is_floor, ReadAxisAlignment(meta_path));
-  for (auto& p : mesh.points) p = (T_level * p.cast<double>()).cast<float>();
 
   // Triangles to instances: the instance of at least two of the three vertices, else of the first.
   const int unannotated = static_cast<int>(instances.size());

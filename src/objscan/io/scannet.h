@@ -8,8 +8,9 @@
 //   ID_vh_clean_2.labels.ply               the same mesh with a per-vertex NYU40 `label` (0 = none)
 //   ID.txt                                 "axisAlignment = m00 m01 ... m33" (row-major 4x4)
 // Ground truth comes from the aggregation + segments when both are present (instances are the
-// segment groups, labelled with their raw category), else from labels.ply (instances are the
-// connected components of one label, labelled with the NYU40 class name). Categories come from the
+// segment groups, labelled with their raw category), else from labels.ply: the instances are then
+// inferred, the pieces of one label grouped by proximity (scannet_instances.h), labelled with the
+// NYU40 class name, and Scene::instances_inferred() says so. Categories come from the
 // category map's `label` rules (config/categories/scannet.yaml). Each triangle belongs to the
 // instance most of its vertices belong to; triangles of no instance form one `other` object named
 // "unannotated" (still scanned, as the sensor sees them).

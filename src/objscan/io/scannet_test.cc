@@ -89,6 +89,50 @@ TEST(ScanNetTest, LabelsPlyGivesConnectedComponentsWithNyu40Categories) {
   ExpectFixtureBox(scene.ObjectBounds(*ByName(scene, "chair_0")), objscan::testing::kFixtureChair, 1e-4);
 }
 
+TEST(ScanNetTest, WithoutAggregationPiecesOfOneLabelAreGroupedIntoObjects) {
+  TempDir dir;
+  using objscan::testing::kFixtureChair;
+  using objscan::testing::kFixtureSecondChair;
+  ScanNetFixtureOptions options;
+  options.aggregation = false;
+  options.split_chairs = true;  // a seat 20 cm over its base: two pieces of label chair
+  {
+    const world::Scene scene = LoadScene(WriteScanNetFixture(dir.path().string(), "scene0020_00", options),
+                                         SceneLoadOptions());
+    EXPECT_TRUE(scene.instances_inferred());
+    ASSERT_EQ(OfCategory(scene, Category::kChair).size(), 1u);
+    ExpectFixtureBox(scene.ObjectBounds(*ByName(scene, "chair_0")), kFixtureChair, 1e-4);
+    ASSERT_EQ(scene.load_notes().size(), 1u);
+    EXPECT_NE(scene.load_notes()[0].find("instances inferred"), std::string::npos) << scene.load_notes()[0];
+    EXPECT_EQ(scene.objects().size(), 6u);  // floor, walls, chair, table, trash can, unannotated
+  }
+  options.second_chair = true;  // 20 cm beside the first: two chairs, four pieces
+  {
+    const world::Scene scene = LoadScene(WriteScanNetFixture(dir.path().string(), "scene0021_00", options),
+                                         SceneLoadOptions());
+    ASSERT_EQ(OfCategory(scene, Category::kChair).size(), 2u);
+    ExpectFixtureBox(scene.ObjectBounds(*ByName(scene, "chair_0")), kFixtureChair, 1e-4);
+    ExpectFixtureBox(scene.ObjectBounds(*ByName(scene, "chair_1")), kFixtureSecondChair, 1e-4);
+  }
+  options.split_chairs = false;
+  {
+    const world::Scene scene = LoadScene(WriteScanNetFixture(dir.path().string(), "scene0022_00", options),
+                                         SceneLoadOptions());
+    EXPECT_EQ(OfCategory(scene, Category::kChair).size(), 2u);
+  }
+  // With the aggregation its instances are used as they are, and nothing is inferred.
+  options.aggregation = true;
+  options.split_chairs = true;
+  {
+    const world::Scene scene = LoadScene(WriteScanNetFixture(dir.path().string(), "scene0023_00", options),
+                                         SceneLoadOptions());
+    EXPECT_FALSE(scene.instances_inferred());
+    EXPECT_TRUE(scene.load_notes().empty());
+    ASSERT_EQ(OfCategory(scene, Category::kChair).size(), 2u);
+    ExpectFixtureBox(scene.ObjectBounds(*ByName(scene, "office_chair_2")), kFixtureChair, 1e-4);
+  }
+}
+
 TEST(ScanNetTest, WithoutAlignmentTheFloorLabelsLevelTheScan) {
   TempDir dir;
   ScanNetFixtureOptions options;

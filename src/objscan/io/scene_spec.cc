@@ -75,9 +75,35 @@ void SceneLoadOptions::Validate() const {
   if (category_map.empty()) throw ConfigError("scene.category_map: must name a category map file");
   config::RequirePositive("scene.max_extent_m", max_extent_m);
   config::Require(max_triangles >= 1, "scene.max_triangles", "must be at least 1");
+  config::RequireInRange("scene.min_loaded_model_fraction", min_loaded_model_fraction, 0.0, 1.0);
+}
+
+void OpenDoors(world::Scene* scene) {
+  std::vector<world::SceneObject>& objects = scene->mutable_objects();
+  std::string names;
+  std::size_t removed = 0;
+  for (const auto& o : objects) {
+    if (o.category != world::Category::kDoor) continue;
+    names += (removed++ == 0 ? "" : ", ") + o.name;
+  }
+  if (removed == 0) {
+    scene->load_notes().push_back("doors open: the scene has no door");
+    return;
+  }
+  objects.erase(std::remove_if(objects.begin(), objects.end(),
+                               [](const world::SceneObject& o) { return o.category == world::Category::kDoor; }),
+                objects.end());
+  scene->load_notes().push_back("doors open: " + std::to_string(removed) + " door" + (removed == 1 ? "" : "s") +
+                                " removed (" + names + ")");
 }
 
 world::Scene LoadScene(const std::string& spec, const SceneLoadOptions& options) {
+  world::Scene scene = LoadSceneAsWritten(spec, options);
+  if (options.doors_open) OpenDoors(&scene);
+  return scene;
+}
+
+world::Scene LoadSceneAsWritten(const std::string& spec, const SceneLoadOptions& options) {
   options.Validate();
   if (spec.rfind("procedural:", 0) == 0) return LoadProcedural(spec);
   const std::string ext = LowerExtension(spec);

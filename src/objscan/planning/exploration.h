@@ -84,7 +84,8 @@ enum class ScanAction {
   kScanObject = 0,   // an unfinished object is left: NBO / NBV
   kExploreFrontier,  // go to the chosen frontier
   kDone,             // no unfinished object and no frontier: terminated "done"
-  kStuck,            // no unfinished object, frontiers left but none reachable: terminated "stuck"
+  kStuck,            // no unfinished object, frontiers left but none reachable: the scanner ends "done"
+                     // listing them when the robot can still move, "stuck" when it cannot
 };
 const char* ToString(ScanAction action);
 

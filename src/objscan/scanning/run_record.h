@@ -120,6 +120,21 @@ struct StructureRecord {
   std::vector<WallRecord> walls;
 };
 
+// What the robot could not get to when the run ended, as its own map shows it (no ground truth): the
+// floor frontiers no path reaches (a closed door, a gap narrower than the robot, cells in the
+// inflated margin of the navigation map) and the objects left unfinished for want of a reachable
+// view. A run that leaves these ends `done`; `stuck` means the robot could not move at all.
+struct UnreachableFrontierRecord {
+  double x_m = 0.0, y_m = 0.0;  // centroid
+  int cells = 0;
+  double area_m2 = 0.0;
+};
+struct UnreachableRecord {
+  std::vector<UnreachableFrontierRecord> frontiers;
+  double frontier_area_m2 = 0.0;
+  std::vector<int> objects;  // ids of reported objects left unfinished: no view of them was reachable
+};
+
 struct RunRecord {
   std::string scene;
   std::uint64_t seed = 0;
@@ -138,6 +153,7 @@ struct RunRecord {
   // (ScannerOptions::steps_per_explored_m2), as of the last step.
   double explored_area_m2 = 0.0;
   int step_budget = 0;
+  UnreachableRecord unreachable;
   double NbvPerObject() const { return nbo_count > 0 ? static_cast<double>(nbv_views) / nbo_count : 0.0; }
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <unordered_map>
@@ -702,6 +703,7 @@ struct Scanner::State {
     };
     const planning::FrontierChoice choice =
         planning::ChooseFrontier(frontiers, path_length, visited_goals, config.exploration);
+    RecordUnreachableFrontiers(goals, choice);
     const planning::ScanAction action = planning::DecideAction(false, choice.status);
     if (action == planning::ScanAction::kDone) return Termination::kDone;
     if (action == planning::ScanAction::kStuck) return Termination::kStuck;
@@ -734,6 +736,32 @@ struct Scanner::State {
       step->look_around = true;
     }
     return Termination::kRunning;
+  }
+
+  // The frontiers of the last exploration step that no path reaches (RunRecord::unreachable).
+  void RecordUnreachableFrontiers(const std::vector<mapping::FrontierGoal>& goals, const planning::FrontierChoice& choice) {
+    UnreachableRecord& u = record.unreachable;
+    u.frontiers.clear();
+    u.frontier_area_m2 = 0.0;
+    const double cell_m2 = config.frontiers.cell_size_m * config.frontiers.cell_size_m;
+    for (std::size_t i = 0; i < goals.size(); ++i) {
+      if (choice.scores[i].exclusion != planning::FrontierExclusion::kUnreachable) continue;
+      const double area_m2 = cell_m2 * goals[i].size_cells;
+      u.frontiers.push_back({goals[i].centroid_m.x(), goals[i].centroid_m.y(), goals[i].size_cells, area_m2});
+      u.frontier_area_m2 += area_m2;
+    }
+  }
+
+  // Whether the robot can drive at least kMinMoveM from where it stands. With frontiers left that no
+  // path reaches, a robot that can move has explored all it can (`done`); one that cannot is `stuck`.
+  static constexpr double kMinMoveM = 0.25;
+  bool RobotCanMove() {
+    RefreshNavigation();
+    Eigen::Vector2d start;
+    if (!navigator.StartFrom(platform.base().xy_m, &start)) return false;
+    const std::vector<double> distance_m = navigator.DistanceField(start);
+    return std::any_of(distance_m.begin(), distance_m.end(),
+                       [](double d) { return std::isfinite(d) && d >= kMinMoveM; });
   }
 
   // The explored area and the step budget it gives (ScannerOptions::steps_per_explored_m2).
@@ -1024,6 +1052,13 @@ bool Scanner::Step() {
       }
       // Nothing else left: complete the scans of the reported objects.
       if (t != Termination::kRunning && object_guidance && s.CoverageStep(&step)) t = Termination::kRunning;
+      if (t == Termination::kStuck && s.RobotCanMove()) {
+        t = Termination::kDone;
+        char note[96];
+        std::snprintf(note, sizeof(note), "the frontiers left are unreachable (%zu, %.2f m2)",
+                      rec.unreachable.frontiers.size(), rec.unreachable.frontier_area_m2);
+        step.notes.push_back(note);
+      }
       if (t != Termination::kRunning) {
         rec.terminated = t;
         step.notes.push_back(std::string("terminated: ") + TerminationName(t));
@@ -1052,6 +1087,15 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   s.FinalAnalysis();
   s.RecordStructure();
   s.record.objects = s.ReportObjects(s.config.report);
+  // Objects left unfinished because none of their views could be reached.
+  for (const ObjectRecord& o : s.record.objects) {
+    if (!o.complete && s.given_up_no_view.count(o.id)) s.record.unreachable.objects.push_back(o.id);
+  }
+  // At the step budget the last exploration step's frontiers say nothing about how the run ended.
+  if (s.record.terminated == Termination::kMaxSteps) {
+    s.record.unreachable.frontiers.clear();
+    s.record.unreachable.frontier_area_m2 = 0.0;
+  }
   s.finished = true;
   s.record.timing_s.total = s.wall.ElapsedSeconds();
   return s.record;

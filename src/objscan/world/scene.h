@@ -72,12 +72,22 @@ class Scene {
   // Models no category map rule matched (category `other`), as "name (source)".
   std::vector<std::string>& unmapped_models() { return unmapped_models_; }
   const std::vector<std::string>& unmapped_models() const { return unmapped_models_; }
+  // True when the loader inferred the object instances itself (a ScanNet scan without its
+  // aggregation: pieces grouped by proximity) instead of reading them from the file: metrics are
+  // only as right as that guess.
+  bool instances_inferred() const { return instances_inferred_; }
+  void set_instances_inferred(bool inferred) { instances_inferred_ = inferred; }
+  // What the loader changed or guessed, one sentence each (doors removed, instances inferred).
+  std::vector<std::string>& load_notes() { return load_notes_; }
+  const std::vector<std::string>& load_notes() const { return load_notes_; }
 
  private:
   std::string name_;
   std::vector<SceneObject> objects_;
   std::vector<std::string> missing_meshes_;
   std::vector<std::string> unmapped_models_;
+  bool instances_inferred_ = false;
+  std::vector<std::string> load_notes_;
 };
 
 }  // namespace objscan::world
