@@ -369,4 +369,31 @@ TEST(RunE2eTest, StepBudgetGrowsWithTheExploredAreaUpToMaxSteps) {
   EXPECT_EQ(capped["terminated"], "max_steps");
 }
 
+TEST(RunE2eTest, UnreachableFrontiersEndTheRunDoneAndAreListed) {
+  fs::path dir;
+  const std::string db = ScratchWithSmallDatabase("objscan_run_e2e_unreachable", &dir);
+  ASSERT_FALSE(db.empty());
+  // Frontier exploration of this living room leaves two frontiers in the inflated margin beside
+  // furniture (no path reaches them) while the robot can still drive: that is `done`, not `stuck`
+  // (which objscan said before), and run.json says what was left.
+  const Result r = RunObjscan("run --scene procedural:living_room:2 --db " + db +
+                              " --set scanner.guidance=frontier --quiet --out " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json run = ReadJson(dir / "out" / "run.json");
+  EXPECT_EQ(run["terminated"], "done");
+  const nlohmann::json& unreachable = run["unreachable"];
+  ASSERT_FALSE(unreachable["frontiers"].empty()) << unreachable.dump();
+  double area_m2 = 0.0;
+  for (const auto& f : unreachable["frontiers"]) {
+    EXPECT_GE(f["cells"].get<int>(), 5);
+    EXPECT_NEAR(f["area_m2"].get<double>(), 0.05 * 0.05 * f["cells"].get<int>(), 1e-4);
+    area_m2 += f["area_m2"].get<double>();
+  }
+  EXPECT_NEAR(unreachable["frontier_area_m2"].get<double>(), area_m2, 1e-4);
+  const std::vector<std::string> notes = run["steps"].back()["notes"];
+  EXPECT_NE(std::find(notes.begin(), notes.end(), "terminated: done"), notes.end());
+  EXPECT_NE(notes.front().find("the frontiers left are unreachable"), std::string::npos) << notes.front();
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["unreachable_frontier_area_m2"].get<double>(), area_m2, 0.01);
+}
+
 }  // namespace
