@@ -221,6 +221,11 @@ int RunScan(const RunArgs& args) {
                  metrics.unreachable_rooms.size(), metrics.unreachable_rooms.size() == 1 ? "" : "s", area_m2, objects,
                  metrics.reachable.Recall(), metrics.reachable.Precision());
   }
+  if (!metrics.never_seen.empty() && !args.quiet) {
+    std::fprintf(stderr,
+                 "objscan run: note: %zu objects of the reachable rooms were never seen (run.json metrics.never_seen)\n",
+                 metrics.never_seen.size());
+  }
   std::printf(
       "{\"out\": \"%s\", \"terminated\": \"%s\", \"views\": %d, \"objects\": %zu, \"recall\": %.4f, "
       "\"precision\": %.4f, \"coverage_rate\": %.4f, \"rand_index\": %.4f, \"travel_m\": %.2f, \"seconds\": %.2f, "

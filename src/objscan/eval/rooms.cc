@@ -198,6 +198,22 @@ int RoomPartition::CellRoom(int ix, int iy) const {
   return cell_room_[static_cast<std::size_t>(iy) * nx_ + ix];
 }
 
+std::vector<int> RoomPartition::RoomsWithin(double x_m, double y_m, double search_m) const {
+  const int ix = static_cast<int>(std::floor((x_m - origin_m_.x()) / cell_m_));
+  const int iy = static_cast<int>(std::floor((y_m - origin_m_.y()) / cell_m_));
+  const int reach = static_cast<int>(std::ceil(search_m / cell_m_));
+  std::vector<int> rooms;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      if (static_cast<long>(dx) * dx + static_cast<long>(dy) * dy > static_cast<long>(reach) * reach) continue;
+      const int r = CellRoom(ix + dx, iy + dy);
+      if (r >= 0 && std::find(rooms.begin(), rooms.end(), r) == rooms.end()) rooms.push_back(r);
+    }
+  }
+  std::sort(rooms.begin(), rooms.end());
+  return rooms;
+}
+
 int RoomPartition::RoomAt(double x_m, double y_m, double search_m) const {
   const int ix = static_cast<int>(std::floor((x_m - origin_m_.x()) / cell_m_));
   const int iy = static_cast<int>(std::floor((y_m - origin_m_.y()) / cell_m_));

@@ -41,6 +41,9 @@ class RoomPartition {
   // The room at (x, y); else the room of the nearest room cell within search_m (a window or door
   // stands in the wall between rooms); -1 when there is none.
   int RoomAt(double x_m, double y_m, double search_m = 0.5) const;
+  // Every room with a cell within search_m of (x, y), ascending (a window in the wall between two
+  // rooms is near both).
+  std::vector<int> RoomsWithin(double x_m, double y_m, double search_m) const;
 
  private:
   int CellRoom(int ix, int iy) const;

@@ -64,6 +64,11 @@ TEST(RoomPartitionTest, DoorsAndDoorwaysSeparateRoomsAndAWideOpeningJoinsThem) {
     const int at_door = rooms.RoomAt(4.0, 2.0);
     EXPECT_TRUE(at_door == west || at_door == east);
     EXPECT_EQ(rooms.RoomAt(30.0, 30.0), -1);
+    // The doorway is near both rooms; each room's middle only near itself.
+    const std::vector<int> both = {std::min(west, east), std::max(west, east)};
+    EXPECT_EQ(rooms.RoomsWithin(4.0, 2.0, 0.5), both);
+    EXPECT_EQ(rooms.RoomsWithin(1.0, 2.0, 0.5), std::vector<int>{west});
+    EXPECT_TRUE(rooms.RoomsWithin(30.0, 30.0, 0.5).empty());
     if (door) {
       EXPECT_EQ(rooms.RoomAt(4.0, 2.0, 0.0), -1) << "the door's own cells are in no room";
     }

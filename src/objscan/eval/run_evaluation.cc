@@ -380,6 +380,17 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
       const auto it = m.room_of_instance.find(instance);
       return it == m.room_of_instance.end() ? -1 : it->second;
     };
+    // Objects in walls (windows, doors) may have their centre on the far side: an object counts as
+    // out of reach only when no reachable room is within half a metre of its centre.
+    std::set<int> out_of_reach;
+    for (const auto& o : m.scene.objects()) {
+      if (o.IsStructural() || reach.Reachable(room_of(o.instance_id))) continue;
+      const Eigen::Vector3d c = m.scene.ObjectBounds(o).Center();
+      const std::vector<int> near = m.rooms.RoomsWithin(c.x(), c.y(), 0.5);
+      if (std::none_of(near.begin(), near.end(), [&](int r) { return reach.Reachable(r); })) {
+        out_of_reach.insert(o.instance_id);
+      }
+    }
     for (std::size_t r = 0; r < reach.reachable.size(); ++r) {
       if (reach.reachable[r]) continue;
       UnreachableRoom u;
@@ -387,7 +398,7 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
       u.area_m2 = m.rooms.rooms()[r].area_m2;
       u.center_m = m.rooms.rooms()[r].center_m;
       for (const auto& o : m.scene.objects()) {
-        if (!o.IsStructural() && room_of(o.instance_id) == static_cast<int>(r)) {
+        if (out_of_reach.count(o.instance_id) && room_of(o.instance_id) == static_cast<int>(r)) {
           u.objects.push_back({o.instance_id, o.name, o.category});
         }
       }
@@ -395,13 +406,25 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
     }
     std::vector<GroundTruthInstance> reachable_truth;
     for (const GroundTruthInstance& g : truth) {
-      if (reach.Reachable(room_of(g.instance_id))) reachable_truth.push_back(g);
+      if (!out_of_reach.count(g.instance_id)) reachable_truth.push_back(g);
     }
     std::vector<OutputObject> reachable_outputs;
     for (std::size_t o = 0; o < outputs.size(); ++o) {
-      if (reach.Reachable(output_room[o])) reachable_outputs.push_back(outputs[o]);
+      // On a ground-truth object: as that object; on background: as the room of its model.
+      const int instance = outputs[o].majority_instance;
+      const bool out = m.room_of_instance.count(instance) ? out_of_reach.count(instance) > 0
+                                                          : !reach.Reachable(output_room[o]);
+      if (!out) reachable_outputs.push_back(outputs[o]);
     }
     out.reachable = MatchRecognitions(reachable_truth, reachable_outputs, m.database_categories).all;
+    // Reachable objects the robot's map holds nothing of (their surface seen within range counts too,
+    // below, with the coverage).
+    std::set<int> in_map;
+    for (const std::int32_t i : m.votes.Instances(scanner.surface_map().size())) in_map.insert(i);
+    for (const auto& o : m.scene.objects()) {
+      if (o.IsStructural() || out_of_reach.count(o.instance_id) || in_map.count(o.instance_id)) continue;
+      out.never_seen.push_back({o.instance_id, o.name, o.category});
+    }
   }
   out.recall = rec.all.Recall();
   out.precision = rec.all.Precision();
@@ -476,6 +499,15 @@ RunMetrics RunEvaluator::Evaluate(const scanning::Scanner& scanner, const scanni
     curve.AddView(m.camera_per_view[i], m.seen_per_view[i]);
     const CoverageResult c = curve.Result(detected);
     out.coverage_per_view.emplace_back(c.rate, c.quality);
+  }
+  {
+    std::set<int> seen_in_range;
+    for (const InstanceOutcome& o : out.instances) {
+      if (o.visible_voxels > 0) seen_in_range.insert(o.instance);
+    }
+    out.never_seen.erase(std::remove_if(out.never_seen.begin(), out.never_seen.end(),
+                                        [&](const ObjectRef& o) { return seen_in_range.count(o.instance) > 0; }),
+                         out.never_seen.end());
   }
   out.rand_index_per_view = m.rand_index_per_view;
   out.travel_m = record.travel_m;

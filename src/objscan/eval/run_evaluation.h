@@ -51,18 +51,20 @@ struct RoomMetrics {
   RecognitionCounts counts;
 };
 
+// A ground-truth object, named for people reading run.json.
+struct ObjectRef {
+  int instance = world::kNoInstance;
+  std::string name;
+  world::Category category = world::Category::kOther;
+};
+
 // A room the robot could not drive into from where it started (a closed door; reachability.h), and
 // the ground-truth objects whose centre lies in it.
 struct UnreachableRoom {
   int room = 0;
   double area_m2 = 0.0;
   Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
-  struct Object {
-    int instance = world::kNoInstance;
-    std::string name;
-    world::Category category = world::Category::kOther;
-  };
-  std::vector<Object> objects;
+  std::vector<ObjectRef> objects;
 };
 
 struct RunMetrics {
@@ -96,6 +98,10 @@ struct RunMetrics {
   // it could (objects in no room count as reachable): the totals when every room is reachable.
   std::vector<UnreachableRoom> unreachable_rooms;
   RecognitionCounts reachable;
+  // Objects (not structure) of the reachable rooms the robot never saw: no element of its map is
+  // theirs and none of their surface was seen within range. A room it could have entered but did
+  // not shows here, not in unreachable_rooms.
+  std::vector<ObjectRef> never_seen;
 };
 
 class RunEvaluator {

@@ -221,6 +221,11 @@ std::string RunJson(const RunOutputInputs& in) {
                                        {"objects", objects}});
     }
     metrics["unreachable_rooms"] = unreachable_rooms;
+    Json never_seen = Json::array();
+    for (const ObjectRef& o : m.never_seen) {
+      never_seen.push_back(Json{{"instance", o.instance}, {"name", o.name}, {"category", world::CategoryName(o.category)}});
+    }
+    metrics["never_seen"] = never_seen;
     Json instances = Json::array();
     for (const auto& o : m.instances) {
       instances.push_back(Json{{"instance", o.instance},
