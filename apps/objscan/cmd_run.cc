@@ -206,19 +206,22 @@ int RunScan(const RunArgs& args) {
   outputs.warn = [](const std::string& m) { std::fprintf(stderr, "objscan run: warning: %s\n", m.c_str()); };
   eval::WriteRunOutputs(args.out, outputs);
 
-  // Rooms the robot could not enter (closed doors): the user is told, and given the metrics without them.
-  if (!metrics.unreachable_rooms.empty()) {
-    std::size_t objects = 0;
-    double area_m2 = 0.0;
-    for (const auto& u : metrics.unreachable_rooms) {
-      objects += u.objects.size();
-      area_m2 += u.area_m2;
-    }
+  // Rooms the robot could not enter (closed doors): the user is told, and given the metrics without
+  // them. Rooms without objects (the floor outside a house's walls) are only listed in run.json.
+  std::size_t rooms_with_objects = 0, objects = 0;
+  double area_m2 = 0.0;
+  for (const auto& u : metrics.unreachable_rooms) {
+    if (u.objects.empty()) continue;
+    ++rooms_with_objects;
+    objects += u.objects.size();
+    area_m2 += u.area_m2;
+  }
+  if (rooms_with_objects > 0) {
     std::fprintf(stderr,
                  "objscan run: note: %zu room%s (%.1f m2, %zu objects) could not be reached from the start (closed "
                  "doors?; --doors-open removes them); over the reachable rooms recall %.4f, precision %.4f "
                  "(run.json metrics.unreachable_rooms, metrics.reachable)\n",
-                 metrics.unreachable_rooms.size(), metrics.unreachable_rooms.size() == 1 ? "" : "s", area_m2, objects,
+                 rooms_with_objects, rooms_with_objects == 1 ? "" : "s", area_m2, objects,
                  metrics.reachable.Recall(), metrics.reachable.Precision());
   }
   if (!metrics.never_seen.empty() && !args.quiet) {

@@ -1273,10 +1273,10 @@ std::string ReportMarkdown(const Report& report) {
       if (r.failed || !r.ReachedLess()) continue;
       std::string rooms;
       for (const auto& u : r.unreachable_rooms) {
+        if (u.objects.empty()) continue;  // the floor outside a house's walls
         rooms += (rooms.empty() ? "" : "; ") + std::string("room ") + std::to_string(u.room) + " (" + Fix(u.area_m2, 1) +
                  " m2): ";
         for (std::size_t k = 0; k < u.objects.size(); ++k) rooms += (k ? ", " : "") + u.objects[k];
-        if (u.objects.empty()) rooms += "no object";
       }
       std::string left;
       for (std::size_t k = 0; k < r.objects_left.size(); ++k) left += (k ? ", " : "") + std::to_string(r.objects_left[k]);

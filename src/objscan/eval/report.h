@@ -6,6 +6,7 @@
 // method), so shards merged give the same file as one bench over the whole suite. With ground truth
 // it also says where the reported objects go wrong (error_analysis.h): confusion.csv, and the error
 // classes of every reported labelled object per method.
+#include <algorithm>
 #include <array>
 #include <map>
 #include <string>
@@ -84,7 +85,13 @@ struct RunSummary {
   bool has_reachable = false;
   int ground_truth_reachable = 0;
   double recall_reachable = 0, precision_reachable = 0;
-  bool ReachedLess() const { return unreachable_frontiers > 0 || !objects_left.empty() || !unreachable_rooms.empty(); }
+  // Something was out of reach: frontiers, objects left, or a room holding objects (a room without
+  // any, such as the floor outside a house's walls, does not count).
+  bool ReachedLess() const {
+    return unreachable_frontiers > 0 || !objects_left.empty() ||
+           std::any_of(unreachable_rooms.begin(), unreachable_rooms.end(),
+                       [](const UnreachableRoomSummary& u) { return !u.objects.empty(); });
+  }
 };
 
 // Parses run.json text. `scene_id` and `method` name the run (from its folder). Throws InputError

@@ -387,7 +387,11 @@ TEST(ReportTest, WhatRunsCouldNotReachIsListedApart) {
       {{{"room", 1}, {"area_m2", 20.3}, {"center_m", {-6.3, 4.8}},
         {"objects", nlohmann::json::array({{{"instance", 9}, {"name", "Bed_01_001"}, {"category", "bed"}}})}}});
   WriteText(dir.path() / "house" / "run.json", j.dump(2));
-  WriteText(dir.path() / "room" / "run.json", Fixture().Json());  // reached everything: not listed
+  // Reached everything but the floor outside the walls (a room without objects): not listed.
+  nlohmann::json room = nlohmann::json::parse(Fixture().Json());
+  room["metrics"]["unreachable_rooms"] = nlohmann::json::array(
+      {{{"room", 2}, {"area_m2", 13.9}, {"center_m", {7.5, 4.8}}, {"objects", nlohmann::json::array()}}});
+  WriteText(dir.path() / "room" / "run.json", room.dump(2));
   const std::vector<RunSummary> runs = CollectRuns({dir.path().string()});
   ASSERT_EQ(runs.size(), 2u);
   const RunSummary& r = runs[0].scene_id == "house" ? runs[0] : runs[1];
