@@ -224,6 +224,11 @@ RunSummary ParseRunJson(const std::string& text, const std::string& scene_id, co
       r.recall_reachable = Num(m["reachable"], "recall");
       r.precision_reachable = Num(m["reachable"], "precision");
     }
+    if (m.contains("never_seen") && m["never_seen"].is_array()) {
+      for (const Json& o : m["never_seen"]) {
+        if (o.is_object()) r.never_seen.push_back(o.value("name", std::string()) + " (" + o.value("category", std::string()) + ")");
+      }
+    }
     if (m.contains("unreachable_rooms") && m["unreachable_rooms"].is_array()) {
       for (const Json& u : m["unreachable_rooms"]) {
         if (!u.is_object()) continue;
@@ -854,7 +859,8 @@ std::string ReportJson(const Report& report) {
                {"rooms", rooms},
                {"frontiers", r.unreachable_frontiers},
                {"frontier_area_m2", r.unreachable_frontier_area_m2},
-               {"objects_left", r.objects_left}};
+               {"objects_left", r.objects_left},
+               {"never_seen", r.never_seen}};
     if (r.has_reachable) {
       entry["reachable"] = Json{{"ground_truth_objects", r.ground_truth_reachable},
                                 {"recall", r.recall_reachable},
@@ -1266,9 +1272,10 @@ std::string ReportMarkdown(const Report& report) {
     md << "\n## What the runs could not reach\n\n"
           "Rooms the robot could not drive into from its start (ground truth: closed doors, gaps narrower than the "
           "robot) with their objects, recall and precision over the other rooms, and what its own map left out of "
-          "reach at the end (floor frontiers no path reaches, objects no reachable view shows).\n\n"
+          "reach at the end (floor frontiers no path reaches, objects no reachable view shows), beside the objects "
+          "of reachable rooms it never saw.\n\n"
           "| Scene | Method | terminated | unreachable rooms (objects) | recall / precision over reachable rooms | "
-          "unreachable frontiers | objects left |\n|---|---|---|---|---|---|---|\n";
+          "unreachable frontiers | objects left | never seen (reachable) |\n|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : report.runs) {
       if (r.failed || !r.ReachedLess()) continue;
       std::string rooms;
@@ -1289,7 +1296,9 @@ std::string ReportMarkdown(const Report& report) {
          << (r.unreachable_frontiers ? std::to_string(r.unreachable_frontiers) + " (" +
                                            Fix(r.unreachable_frontier_area_m2, 2) + " m2)"
                                      : std::string("-"))
-         << " | " << (left.empty() ? "-" : left) << " |\n";
+         << " | " << (left.empty() ? "-" : left) << " | ";
+      for (std::size_t k = 0; k < r.never_seen.size(); ++k) md << (k ? ", " : "") << r.never_seen[k];
+      md << (r.never_seen.empty() ? "- |\n" : " |\n");
     }
   }
   md << "\n## Plots\n\n";

@@ -82,6 +82,7 @@ struct RunSummary {
     std::vector<std::string> objects;  // "name (category)"
   };
   std::vector<UnreachableRoomSummary> unreachable_rooms;
+  std::vector<std::string> never_seen;  // metrics.never_seen: "name (category)"
   bool has_reachable = false;
   int ground_truth_reachable = 0;
   double recall_reachable = 0, precision_reachable = 0;

@@ -381,6 +381,7 @@ TEST(ReportTest, WhatRunsCouldNotReachIsListedApart) {
   j["unreachable"] = {{"frontier_area_m2", 0.35},
                       {"frontiers", nlohmann::json::array({{{"xy_m", {1.0, 2.0}}, {"cells", 140}, {"area_m2", 0.35}}})},
                       {"objects", {17, 42}}};
+  j["metrics"]["never_seen"] = nlohmann::json::array({{{"instance", 4}, {"name", "Wardrobe_01_001"}, {"category", "cabinet"}}});
   j["metrics"]["reachable"] = {{"ground_truth_objects", 3}, {"output_objects", 8}, {"true_positives", 2},
                                {"recall", 2.0 / 3.0}, {"precision", 0.25}};
   j["metrics"]["unreachable_rooms"] = nlohmann::json::array(
@@ -407,7 +408,7 @@ TEST(ReportTest, WhatRunsCouldNotReachIsListedApart) {
   const std::string md = ReportMarkdown(report);
   EXPECT_NE(md.find("## What the runs could not reach"), std::string::npos);
   EXPECT_NE(md.find("| house | `ours` | done | room 1 (20.3 m2): Bed_01_001 (bed) | 66.67% / 25.00% (3 objects) | "
-                    "1 (0.35 m2) | 17, 42 |"),
+                    "1 (0.35 m2) | 17, 42 | Wardrobe_01_001 (cabinet) |"),
             std::string::npos)
       << md;
   EXPECT_EQ(md.find("| room | `ours` | done | -"), std::string::npos);
