@@ -959,6 +959,7 @@ struct Scanner::State {
   std::set<std::int32_t> given_up_labels;  // components of objects given up for good
   std::set<int> given_up_no_view;  // given up because no NBV candidate was valid (subset of given_up)
   std::vector<Eigen::Vector2d> stuck_lookarounds;  // where the robot looked around on getting stuck
+  int views_at_reopen = -1;  // record.views when objects without a valid view were last given another chance
   std::map<int, int> views_spent;
   std::map<std::int32_t, int> label_views;  // NBV views spent on objects holding this component
   std::map<int, std::vector<double>> objectness_history;  // O(r) of an OOI before each of its views
@@ -1048,6 +1049,16 @@ bool Scanner::Step() {
         // Objects given up for want of a valid view get another chance with the better map.
         for (int id : s.given_up_no_view) s.given_up.erase(id);
         s.given_up_no_view.clear();
+        s.views_at_reopen = rec.views;
+        t = Termination::kRunning;
+      } else if (t == Termination::kStuck && object_guidance && !s.given_up_no_view.empty() &&
+                 rec.views > s.views_at_reopen) {
+        // Unreachable frontiers must not end the run while an object may have a view: those given up
+        // for want of one get another chance whenever views were taken since the last one.
+        step.notes.push_back("no reachable goal: objects without a valid view get another chance");
+        for (int id : s.given_up_no_view) s.given_up.erase(id);
+        s.given_up_no_view.clear();
+        s.views_at_reopen = rec.views;
         t = Termination::kRunning;
       }
       // Nothing else left: complete the scans of the reported objects.
