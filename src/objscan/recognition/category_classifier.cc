@@ -7,7 +7,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "objscan/common/error.h"
 #include "objscan/common/rng.h"
+#include "objscan/io/binary_file.h"
 #include "objscan/recognition/model_database.h"
 
 namespace objscan::recognition {
@@ -428,6 +430,77 @@ CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<
     out[static_cast<std::size_t>(world::CategoryId(classes_[c]))] = score(static_cast<Eigen::Index>(c));
   }
   return out;
+}
+
+namespace {
+
+constexpr io::BinaryFileFormat kClassifierFormat = {"OBJSCCL\n", 1, "category classifier",
+                                                    "delete it: it is trained again"};
+
+void WriteMatrix(const Eigen::MatrixXd& m, io::BinaryWriter* w) {
+  w->Pod(static_cast<std::uint32_t>(m.rows()));
+  w->Pod(static_cast<std::uint32_t>(m.cols()));
+  w->Array(m.data(), static_cast<std::size_t>(m.size()));
+}
+
+Eigen::MatrixXd ReadMatrix(io::BinaryReader* r) {
+  const std::uint32_t rows = r->Pod<std::uint32_t>("matrix");
+  const std::uint32_t cols = r->Pod<std::uint32_t>("matrix");
+  if (rows > (1u << 16) || cols > (1u << 16)) r->Fail("matrix too large");
+  Eigen::MatrixXd m(rows, cols);
+  r->Array(m.data(), static_cast<std::size_t>(m.size()), "matrix");
+  return m;
+}
+
+}  // namespace
+
+void CategoryClassifier::Save(const std::string& path) const {
+  io::BinaryWriter w;
+  w.Pod(static_cast<std::int32_t>(kNumShapeFeatures));
+  w.Pod(static_cast<std::uint32_t>(classes_.size()));
+  for (world::Category c : classes_) w.String(world::CategoryName(c));
+  w.Pod(static_cast<std::uint8_t>(forest_.trained() ? 1 : 0));
+  if (forest_.trained()) {
+    forest_.Write(&w);
+  } else {
+    WriteMatrix(mean_, &w);
+    WriteMatrix(inverse_std_, &w);
+    WriteMatrix(weights_, &w);
+  }
+  io::WriteBinaryFile(path, kClassifierFormat, w.buffer());
+}
+
+CategoryClassifier CategoryClassifier::Load(const std::string& path) {
+  const std::vector<char> bytes = io::ReadVerifiedBinaryFile(path, kClassifierFormat);
+  io::BinaryReader r(bytes.data() + io::kBinaryHeaderSize, bytes.size() - io::kBinaryHeaderSize, path,
+                     kClassifierFormat.kind);
+  CategoryClassifier c;
+  if (r.Pod<std::int32_t>("features") != kNumShapeFeatures) r.Fail("another number of shape features");
+  const std::uint32_t num_classes = r.Count(4, "classes");
+  for (std::uint32_t i = 0; i < num_classes; ++i) {
+    const std::string name = r.String("classes");
+    const auto category = world::ParseCategory(name);
+    if (!category) r.Fail("unknown category '" + name + "'");
+    c.classes_.push_back(*category);
+  }
+  if (r.Pod<std::uint8_t>("learner") == 1) {
+    c.forest_ = RandomForest::Read(&r);
+    if (c.forest_.num_features() != kNumShapeFeatures || c.forest_.num_classes() != static_cast<int>(num_classes))
+      r.Fail("the forest's features or classes disagree with the classifier's");
+  } else if (num_classes > 1) {
+    c.mean_ = ReadMatrix(&r);
+    c.inverse_std_ = ReadMatrix(&r);
+    c.weights_ = ReadMatrix(&r);
+    if (c.mean_.size() != kNumShapeFeatures || c.inverse_std_.size() != kNumShapeFeatures ||
+        c.weights_.rows() != static_cast<Eigen::Index>(num_classes) || c.weights_.cols() != kNumShapeFeatures + 1)
+      r.Fail("softmax weights of the wrong shape");
+  } else {
+    ReadMatrix(&r);
+    ReadMatrix(&r);
+    ReadMatrix(&r);
+  }
+  if (!r.AtEnd()) r.Fail("trailing bytes");
+  return c;
 }
 
 }  // namespace objscan::recognition

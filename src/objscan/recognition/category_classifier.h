@@ -48,6 +48,9 @@ struct CategoryClassifierOptions {
   // How samples weigh: "samples" (every sample the same within its class) or "models" (every model
   // the same within its class, however many pieces and views it gave). Classes weigh the same.
   std::string balance = "samples";
+  // Keep the trained classifier in objscan's cache folder and read it back on the next run with the
+  // same training data and options (classifier_cache.h): the same classifier without training again.
+  bool cache = true;
   RandomForestOptions forest;
   // method "softmax": full-batch gradient descent from zero.
   int iterations = 300;
@@ -66,6 +69,7 @@ struct CategoryClassifierOptions {
     v("seed", seed);
     v("extra_training_databases", extra_training_databases);
     v("balance", balance);
+    v("cache", cache);
     v("forest", forest);
     v("iterations", iterations);
     v("learning_rate", learning_rate);
@@ -116,6 +120,11 @@ class CategoryClassifier {
     return Classify(ShapeFeatures(points, normals, floor_z_m));
   }
   const std::vector<world::Category>& classes() const { return classes_; }
+
+  // The trained classifier as a file (classifier_cache.h) and back; Load throws InputError naming the
+  // file when it is missing, damaged or of another format, and gives back what was saved exactly.
+  void Save(const std::string& path) const;
+  static CategoryClassifier Load(const std::string& path);
 
  private:
   std::vector<world::Category> classes_;

@@ -8,7 +8,7 @@
 #include <type_traits>
 
 #include "objscan/common/error.h"
-#include "objscan/io/atomic_file.h"
+#include "objscan/io/binary_file.h"
 
 namespace objscan::recognition {
 
@@ -23,108 +23,10 @@ const char* EntryKindName(EntryKind kind) {
 
 namespace {
 
-constexpr char kMagic[8] = {'O', 'B', 'J', 'S', 'C', 'D', 'B', '\n'};
-// Header: magic, u32 version, u64 payload size, u64 checksum of the payload.
-constexpr std::size_t kHeaderSize = 8 + 4 + 8 + 8;
-
-// FNV-1a over 64-bit little-endian words (then the tail bytes): fast enough to check a large file on
-// every load, and any flipped or shifted byte changes it.
-std::uint64_t Checksum(const char* data, std::size_t size) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  std::size_t i = 0;
-  for (; i + 8 <= size; i += 8) {
-    std::uint64_t word;
-    std::memcpy(&word, data + i, 8);
-    h = (h ^ word) * 0x100000001b3ull;
-    h ^= h >> 29;
-  }
-  for (; i < size; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 0x100000001b3ull;
-  return h;
-}
-
-// Little-endian writer (objscan targets little-endian hosts; the format is defined little-endian).
-class Writer {
- public:
-  template <class T>
-  void Pod(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const char* p = reinterpret_cast<const char*>(&v);
-    buf_.insert(buf_.end(), p, p + sizeof(T));
-  }
-  void String(const std::string& s) {
-    Pod(static_cast<std::uint32_t>(s.size()));
-    buf_.insert(buf_.end(), s.begin(), s.end());
-  }
-  template <class T>
-  void Array(const T* data, std::size_t count) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const char* p = reinterpret_cast<const char*>(data);
-    buf_.insert(buf_.end(), p, p + count * sizeof(T));
-  }
-  void Points(const std::vector<Eigen::Vector3f>& pts) {
-    Pod(static_cast<std::uint32_t>(pts.size()));
-    Array(reinterpret_cast<const float*>(pts.data()), 3 * pts.size());
-  }
-  const std::vector<char>& buffer() const { return buf_; }
-
- private:
-  std::vector<char> buf_;
-};
-
-class Reader {
- public:
-  Reader(const char* data, std::size_t size, const std::string& path) : p_(data), end_(data + size), path_(path) {}
-  template <class T>
-  T Pod(const char* what) {
-    T v;
-    Need(sizeof(T), what);
-    std::memcpy(&v, p_, sizeof(T));
-    p_ += sizeof(T);
-    return v;
-  }
-  std::uint32_t Count(std::size_t element_size, const char* what) {
-    const auto n = Pod<std::uint32_t>(what);
-    // A count can never exceed what is left of the file.
-    if (element_size > 0 && n > static_cast<std::size_t>(end_ - p_) / element_size) Truncated(what);
-    return n;
-  }
-  std::string String(const char* what) {
-    const std::uint32_t n = Count(1, what);
-    std::string s(p_, n);
-    p_ += n;
-    return s;
-  }
-  template <class T>
-  void Array(T* out, std::size_t count, const char* what) {
-    // An empty array's out is an empty vector's data(), which may be null: no memcpy (UB on null).
-    if (count == 0) return;
-    Need(count * sizeof(T), what);
-    std::memcpy(out, p_, count * sizeof(T));
-    p_ += count * sizeof(T);
-  }
-  std::vector<Eigen::Vector3f> Points(const char* what) {
-    const std::uint32_t n = Count(12, what);
-    static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "Vector3f must be packed");
-    std::vector<Eigen::Vector3f> pts(n);
-    Array(reinterpret_cast<float*>(pts.data()), 3 * static_cast<std::size_t>(n), what);
-    return pts;
-  }
-  bool AtEnd() const { return p_ == end_; }
-  [[noreturn]] void Fail(const std::string& what) const {
-    throw InputError(path_ + ": corrupt model database (" + what + ")");
-  }
-
- private:
-  void Need(std::size_t n, const char* what) {
-    if (static_cast<std::size_t>(end_ - p_) < n) Truncated(what);
-  }
-  [[noreturn]] void Truncated(const char* what) const {
-    throw InputError(path_ + ": truncated or corrupt model database (at " + what + ")");
-  }
-  const char* p_;
-  const char* end_;
-  const std::string& path_;
-};
+constexpr io::BinaryFileFormat kFormat = {"OBJSCDB\n", ModelDatabase::kFormatVersion, "model database",
+                                          "rebuild it with objscan db build"};
+using Writer = io::BinaryWriter;
+using Reader = io::BinaryReader;
 
 world::Category ReadCategory(Reader* r, const char* what) {
   const std::string name = r->String(what);
@@ -202,67 +104,14 @@ void ModelDatabase::Save(const std::string& path) const {
       w.Pod<float>(b.value);
     }
   }
-  const std::vector<char>& payload = w.buffer();
-
-  // Atomically (io/atomic_file.h): a killed build or a full disk never leaves a partial database under
-  // the target name, and concurrent builders of the same cache file each write their own temporary.
-  io::AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot write model database");
-    const std::uint32_t version = kFormatVersion;
-    const std::uint64_t size = payload.size();
-    const std::uint64_t checksum = Checksum(payload.data(), payload.size());
-    out.write(kMagic, sizeof(kMagic));
-    out.write(reinterpret_cast<const char*>(&version), sizeof(version));
-    out.write(reinterpret_cast<const char*>(&size), sizeof(size));
-    out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
-    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
-    out.flush();
-    if (!out) throw InputError(path + ": failed writing model database");
-  }
-  file.Commit();
+  io::WriteBinaryFile(path, kFormat, w.buffer());
 }
 
 namespace {
 
-// The whole file, its header checked and its payload verified against the checksum (so a truncated,
-// extended or bit-flipped file is rejected before anything is parsed). Returns the bytes; the payload
-// starts at kHeaderSize.
 std::vector<char> ReadVerifiedFile(const std::string& path, std::uint64_t max_memory_bytes) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw InputError(path + ": cannot open model database");
-  const std::streamoff file_size = in.tellg();
-  if (file_size < 0) throw InputError(path + ": cannot read model database");
-  const std::uint64_t need = static_cast<std::uint64_t>(file_size) * ModelDatabase::kMemoryPerFileByte;
-  if (max_memory_bytes > 0 && need > max_memory_bytes) {
-    const auto mb = [](std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); };
-    throw InputError(path + ": the model database needs about " + mb(need) + " MB of memory once loaded, more than the " +
-                     "limit of " + mb(max_memory_bytes) +
-                     " MB (recognition.max_database_memory_mb; 0 means the memory available)");
-  }
-  std::vector<char> bytes(static_cast<std::size_t>(file_size));
-  in.seekg(0);
-  if (!in.read(bytes.data(), file_size)) throw InputError(path + ": cannot read model database");
-  if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-    throw InputError(path + ": not an objscan model database (bad magic)");
-  if (bytes.size() < kHeaderSize) throw InputError(path + ": truncated model database (header)");
-  std::uint32_t version = 0;
-  std::uint64_t size = 0, checksum = 0;
-  std::memcpy(&version, bytes.data() + 8, 4);
-  std::memcpy(&size, bytes.data() + 12, 8);
-  std::memcpy(&checksum, bytes.data() + 20, 8);
-  if (version != ModelDatabase::kFormatVersion) {
-    throw InputError(path + ": model database format version " + std::to_string(version) +
-                     ", this objscan reads version " + std::to_string(ModelDatabase::kFormatVersion) +
-                     " (rebuild it with objscan db build)");
-  }
-  if (bytes.size() - kHeaderSize < size) throw InputError(path + ": truncated model database");
-  if (bytes.size() - kHeaderSize > size) throw InputError(path + ": corrupt model database (trailing bytes)");
-  if (Checksum(bytes.data() + kHeaderSize, size) != checksum) {
-    throw InputError(path + ": corrupt model database (checksum mismatch)");
-  }
-  return bytes;
+  return io::ReadVerifiedBinaryFile(path, kFormat, max_memory_bytes, ModelDatabase::kMemoryPerFileByte,
+                                    "recognition.max_database_memory_mb");
 }
 
 }  // namespace
@@ -273,11 +122,11 @@ void ModelDatabase::Verify(const std::string& path, std::uint64_t max_memory_byt
 
 ModelDatabase ModelDatabase::Load(const std::string& path, std::uint64_t max_memory_bytes) {
   const std::vector<char> bytes = ReadVerifiedFile(path, max_memory_bytes);
-  return FromPayload(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize, path);
+  return FromPayload(bytes.data() + io::kBinaryHeaderSize, bytes.size() - io::kBinaryHeaderSize, path);
 }
 
 ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, const std::string& path) {
-  Reader r(payload, size, path);
+  Reader r(payload, size, path, kFormat.kind);
   ModelDatabase db;
   DatabaseSettings& s = db.settings_;
   s.keypoints.num_keypoints = r.Pod<std::int32_t>("settings");

@@ -203,4 +203,59 @@ std::vector<double> RandomForest::Predict(const float* features) const {
   return p;
 }
 
+void RandomForest::Write(io::BinaryWriter* out) const {
+  out->Pod(static_cast<std::int32_t>(num_features_));
+  out->Pod(static_cast<std::int32_t>(num_classes_));
+  out->Pod(static_cast<std::uint32_t>(trees_.size()));
+  for (const Tree& tree : trees_) {
+    out->Pod(static_cast<std::uint32_t>(tree.nodes.size()));
+    for (const Node& node : tree.nodes) {
+      out->Pod(node.feature);
+      out->Pod(node.threshold);
+      out->Pod(node.left);
+      out->Pod(node.right);
+      out->Pod(node.distribution);
+    }
+    out->Vector(tree.leaf_values);
+  }
+}
+
+RandomForest RandomForest::Read(io::BinaryReader* in) {
+  RandomForest forest;
+  forest.num_features_ = in->Pod<std::int32_t>("forest");
+  forest.num_classes_ = in->Pod<std::int32_t>("forest");
+  if (forest.num_features_ < 1 || forest.num_classes_ < 1) in->Fail("forest without features or classes");
+  const std::uint32_t num_trees = in->Count(4, "forest trees");
+  forest.trees_.resize(num_trees);
+  for (Tree& tree : forest.trees_) {
+    constexpr std::size_t kNodeBytes = 4 + 4 + 4 + 4 + 4;
+    tree.nodes.resize(in->Count(kNodeBytes, "forest nodes"));
+    for (Node& node : tree.nodes) {
+      node.feature = in->Pod<std::int32_t>("forest nodes");
+      node.threshold = in->Pod<float>("forest nodes");
+      node.left = in->Pod<std::int32_t>("forest nodes");
+      node.right = in->Pod<std::int32_t>("forest nodes");
+      node.distribution = in->Pod<std::int32_t>("forest nodes");
+    }
+    tree.leaf_values = in->Vector<float>("forest leaves");
+    if (tree.nodes.empty()) in->Fail("a forest tree without nodes");
+    // Children come after their parent (so every walk ends) and leaves point inside the leaf values.
+    const auto num_nodes = static_cast<std::int64_t>(tree.nodes.size());
+    for (std::int64_t i = 0; i < num_nodes; ++i) {
+      const Node& node = tree.nodes[static_cast<std::size_t>(i)];
+      if (node.feature >= 0) {
+        if (node.feature >= forest.num_features_ || node.left <= i || node.right <= i || node.left >= num_nodes ||
+            node.right >= num_nodes) {
+          in->Fail("a forest node's feature or children out of range");
+        }
+      } else if (node.distribution < 0 ||
+                 static_cast<std::size_t>(node.distribution) + static_cast<std::size_t>(forest.num_classes_) >
+                     tree.leaf_values.size()) {
+        in->Fail("a forest leaf out of range");
+      }
+    }
+  }
+  return forest;
+}
+
 }  // namespace objscan::recognition

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "objscan/io/binary_file.h"
+
 #include "objscan/common/config.h"
 
 namespace objscan::recognition {
@@ -54,6 +56,12 @@ class RandomForest {
   int num_features() const { return num_features_; }
   // Class probabilities (num_classes values summing to 1); empty when not trained.
   std::vector<double> Predict(const float* features) const;
+
+  // The trained forest as bytes (CategoryClassifier's cache file) and back. Read checks every index
+  // (features, children, leaves) so that no payload makes Predict read out of bounds; throws
+  // InputError through the reader.
+  void Write(io::BinaryWriter* out) const;
+  static RandomForest Read(io::BinaryReader* in);
 
  private:
   struct Node {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "objscan/common/rng.h"
+#include "objscan/recognition/classifier_cache.h"
 #include "objscan/recognition/default_database.h"
 #include "objscan/recognition/keypoints.h"
 #include "objscan/recognition/normals.h"
@@ -88,7 +89,9 @@ const CategoryClassifier& Recognizer::classifier() const {
     for (const ModelDatabase& db : extra) {
       if (!same_models(db, database_)) all.push_back(&db);
     }
-    classifier_ = CategoryClassifier::Train(all, options_.classifier);
+    classifier_ = options_.classifier.cache
+                      ? TrainOrLoadClassifier(all, options_.classifier, DefaultDatabaseCacheDir())
+                      : CategoryClassifier::Train(all, options_.classifier);
   });
   return classifier_;
 }
