@@ -26,22 +26,24 @@ COLOURS = {"sense": "#4e79a7", "fuse": "#f28e2b", "segment": "#59a14f", "recogni
 
 
 def find_runs(paths):
+    """(run.json path, its folder relative to the argument that named it) pairs."""
     runs = []
     for p in paths:
         if os.path.isfile(p):
-            runs.append(p)
+            runs.append((p, os.path.basename(os.path.dirname(os.path.abspath(p)))))
             continue
         if not os.path.isdir(p):
             sys.exit(f"step_costs.py: error: {p}: no such file or folder")
         for root, _dirs, files in os.walk(p):
             if "run.json" in files:
-                runs.append(os.path.join(root, "run.json"))
+                rel = os.path.relpath(root, p)
+                runs.append((os.path.join(root, "run.json"), os.path.basename(os.path.abspath(p)) if rel == "." else rel))
     if not runs:
         sys.exit("step_costs.py: error: no run.json found below " + " ".join(paths))
     return sorted(runs)
 
 
-def load_steps(path):
+def load_steps(path, folder_name):
     try:
         with open(path) as f:
             run = json.load(f)
@@ -58,10 +60,15 @@ def load_steps(path):
         row["wall"] = wall
         row["other"] = max(0.0, wall - sum(row[st] for st in STAGES))
         steps.append(row)
-    name = run.get("scene", os.path.basename(os.path.dirname(path)))
+    # A scene spec names the run unless it is a file path (a world): then the run's folder does
+    # (a bench's runs/<scene>/<method>).
+    name = run.get("scene", "")
     if isinstance(name, dict):
-        name = name.get("spec") or name.get("name") or os.path.basename(os.path.dirname(path))
-    return str(name), run, steps
+        name = name.get("spec") or name.get("name") or ""
+    name = str(name)
+    if not name or "/" in name:
+        name = folder_name
+    return name, run, steps
 
 
 def fifth_means(steps, key):
@@ -127,8 +134,8 @@ def main():
     print("| run | steps | cpu_s | " + " | ".join(f"{st} first/last ms" for st in STAGES + ["wall"]) +
           " | wall last/first |")
     print("|---|---|---|" + "---|" * (len(STAGES) + 2))
-    for path in find_runs(args.paths):
-        name, run, steps = load_steps(path)
+    for path, folder_name in find_runs(args.paths):
+        name, run, steps = load_steps(path, folder_name)
         if not steps:
             print(f"step_costs.py: warning: {path}: no steps", file=sys.stderr)
             continue
