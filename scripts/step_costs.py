@@ -89,8 +89,7 @@ def write_svg(path, name, steps):
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'font-family="sans-serif" font-size="11">',
            f'<rect width="{width}" height="{height}" fill="white"/>',
-           f'<text x="{left}" y="18" font-size="13">{name}: compute per step (ms, stacked by stage) and '
-           f'segments in the map (line)</text>']
+           f'<text x="{left}" y="18" font-size="12">{name}: ms per step by stage; segments (line)</text>']
     for i, s in enumerate(steps):
         y = top + plot_h
         for stage in STAGES + ["other"]:
