@@ -22,6 +22,11 @@ packages=(
   pybind11-dev python3-dev python3-numpy
   # scripts/slurm/bench_array.sh is tested on a one-node cluster the test starts (slurmctld + slurmd).
   slurm-wlm
+  # objscan_ros (ros/, OBJSCAN_WITH_ROS): ROS 1 as Debian packages it: roscpp, tf2 and the message
+  # packages the nodes speak; the master (roscore) and rosbag (record, and the Python reader) for the
+  # end-to-end test. No catkin: the nodes build with objscan's CMake.
+  ros-core-dev libroscpp-dev libtf2-ros-dev libsensor-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
+  libgeometry-msgs-dev libstd-msgs-dev ros-core python3-rosbag
 )
 if [[ "${OBJSCAN_WITH_PEERS:-0}" == "1" ]]; then
   packages+=(libopen3d-dev python3-open3d)

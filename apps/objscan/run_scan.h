@@ -1,0 +1,49 @@
+#pragma once
+// The part of `objscan run` after the robot is chosen: scan with a platform, evaluate against the
+// scene's ground truth when there is one, write the output folder and print the summary line. The
+// simulator (cmd_run.cc) and the ROS node (ros/objscan_ros_node.cc) share it, so a run over ROS
+// writes the same files as a run in one process.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "objscan/platform/platform.h"
+#include "objscan/recognition/model_database.h"
+#include "objscan/scanning/scanner.h"
+#include "objscan/scanning/system_config.h"
+#include "objscan/world/scene.h"
+
+namespace objscan::app {
+
+// The model database of a run, loaded and checked (an empty database is bad input), with the
+// built-in training databases its category recognizer also reads built now (with progress).
+struct RunDatabase {
+  std::string path;
+  recognition::ModelDatabase database;
+};
+// `db_path` empty: the built-in database for `scene_spec` (DefaultDatabasePathFor).
+RunDatabase LoadRunDatabase(const std::string& db_path, const std::string& scene_spec,
+                            const scanning::SystemConfig& config, bool quiet);
+
+struct ScanRunInputs {
+  const scanning::SystemConfig* config = nullptr;
+  const RunDatabase* database = nullptr;
+  // The scene's ground truth for evaluation (metrics, gt_instance); null: none (a real robot's room).
+  const world::Scene* scene = nullptr;
+  std::string scene_spec;  // run.json `scene`
+  std::uint64_t seed = 1;
+  std::string out;
+  bool quiet = false;
+  bool save_frames = false;
+  std::string program = "objscan run";  // the prefix of warnings on stderr
+  // Called after every step of the scan and once after the report stage (to show progress
+  // elsewhere, e.g. on ROS topics); may be empty.
+  std::function<void(const scanning::Scanner& scanner, const scanning::RunRecord& record, bool finished)> on_step;
+};
+
+// Scans with `platform` from where it stands, writes OUT/ (eval::WriteRunOutputs) and prints the
+// JSON summary line on stdout. Returns the exit code (0).
+int ScanAndWrite(const ScanRunInputs& in, platform::Platform* platform);
+
+}  // namespace objscan::app

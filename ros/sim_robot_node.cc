@@ -1,0 +1,195 @@
+// objscan_sim_ros: objscan's simulator (sim::SimulatedRobot in a scene) served over ROS 1, the robot
+// end of objscan_ros's topics: it answers requests (bridge/robot_server.h), renders a depth frame on
+// each capture request and publishes it with its camera info, the ground-truth instances and the
+// camera's and base's tf; after a move, the base's path (for RViz).
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "objscan/common/error.h"
+#include "objscan/io/scene_spec.h"
+#include "objscan/scanning/scene_limits.h"
+#include "objscan/scanning/system_config.h"
+#include "objscan/sim/simulated_robot.h"
+#include "robot_server.h"
+#include "ros_messages.h"
+
+namespace objscan::ros_bridge {
+namespace {
+
+struct SimArgs {
+  std::string scene = "procedural:bedroom:1";
+  std::uint64_t seed = 1;
+  std::string config_file;
+  std::vector<std::string> sets;
+  std::string model_path;
+  std::string category_map;
+  std::string world_frame = "world";
+  std::string base_frame = "base_link";
+  std::string camera_frame = "camera_depth_optical_frame";
+  int min_image_subscribers = 1;
+  double subscriber_timeout_s = 30.0;
+  bool ground_truth = true;
+};
+
+class SimNode {
+ public:
+  SimNode(const SimArgs& args, platform::Platform* robot) : args_(args), server_(robot) {
+    ros::NodeHandle nh;
+    const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
+    response_pub_ = nh.advertise<std_msgs::String>("objscan/robot_response", 1000);
+    depth_pub_ = nh.advertise<sensor_msgs::Image>("camera/depth/image", 10);
+    info_pub_ = nh.advertise<sensor_msgs::CameraInfo>("camera/depth/camera_info", 10);
+    if (args_.ground_truth) instance_pub_ = nh.advertise<sensor_msgs::Image>("camera/depth/gt_instance", 10);
+    path_pub_ = nh.advertise<nav_msgs::Path>("objscan/base_path", 10, true);
+    request_sub_ = nh.subscribe("objscan/robot_request", 1000, &SimNode::OnRequest, this, hints);
+    PublishPose(ros::Time::now());
+  }
+
+ private:
+  void OnRequest(const std_msgs::String::ConstPtr& msg) {
+    RobotRequest request;
+    try {
+      request = DecodeRequest(msg->data);
+    } catch (const InputError& e) {
+      ROS_ERROR("objscan_sim_ros: %s", e.what());
+      return;
+    }
+    if (request.kind == RequestKind::kCapture) {
+      Capture();
+      return;
+    }
+    if (request.kind == RequestKind::kHello) WaitForImageSubscribers();
+    const RobotResponse response = server_.Serve(request);
+    if (!response.error.empty()) ROS_ERROR("objscan_sim_ros: %s", response.error.c_str());
+    if (request.kind == RequestKind::kMoveCamera && response.status == platform::ReachStatus::kOk) {
+      PublishPath(response.path);
+    }
+    if (request.kind == RequestKind::kMoveCamera || request.kind == RequestKind::kTurnCamera) {
+      PublishPose(ros::Time::now());
+    }
+    std_msgs::String out;
+    out.data = EncodeResponse(response);
+    response_pub_.publish(out);
+  }
+
+  // A recorder (rosbag) listening beside objscan_ros gets every frame only when it is connected
+  // before the first one: the scan starts once enough image subscribers are there.
+  void WaitForImageSubscribers() {
+    const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(args_.subscriber_timeout_s);
+    while (ros::ok() && static_cast<int>(depth_pub_.getNumSubscribers()) < args_.min_image_subscribers &&
+           ros::WallTime::now() < until) {
+      ros::WallDuration(0.01).sleep();
+    }
+    if (static_cast<int>(depth_pub_.getNumSubscribers()) < args_.min_image_subscribers) {
+      ROS_WARN("objscan_sim_ros: %d of %d image subscribers after %.0f s; serving anyway",
+               depth_pub_.getNumSubscribers(), args_.min_image_subscribers, args_.subscriber_timeout_s);
+    }
+  }
+
+  void Capture() {
+    const platform::DepthFrame frame = server_.Capture();
+    std_msgs::Header header;
+    header.stamp = ros::Time::now();
+    header.frame_id = args_.camera_frame;
+    // The pose first: a listener looks it up for the image's stamp.
+    PublishPose(header.stamp);
+    info_pub_.publish(ToCameraInfoMsg(CameraInfoFromIntrinsics(frame.intrinsics), header));
+    if (args_.ground_truth) {
+      instance_pub_.publish(ToImageMsg(InstanceImage(frame.gt_instance, frame.width(), frame.height()), header));
+    }
+    depth_pub_.publish(ToImageMsg(DepthImageFromMetres(frame.depth_m, frame.width(), frame.height()), header));
+  }
+
+  void PublishPose(const ros::Time& stamp) {
+    const RobotState state = server_.State();
+    geometry_msgs::TransformStamped base, camera;
+    base.header.stamp = camera.header.stamp = stamp;
+    base.header.frame_id = camera.header.frame_id = args_.world_frame;
+    base.child_frame_id = args_.base_frame;
+    base.transform = ToTransformMsg(TransformFromBase(state.base));
+    // The camera straight from the world frame: one transform, nothing composed on the way.
+    camera.child_frame_id = args_.camera_frame;
+    camera.transform = ToTransformMsg(TransformFromPose(state.T_world_camera));
+    tf_.sendTransform(std::vector<geometry_msgs::TransformStamped>{base, camera});
+  }
+
+  void PublishPath(const navigation::Path2D& path) {
+    nav_msgs::Path msg;
+    msg.header.stamp = ros::Time::now();
+    msg.header.frame_id = args_.world_frame;
+    for (const Eigen::Vector2d& w : path.waypoints) {
+      geometry_msgs::PoseStamped p;
+      p.header = msg.header;
+      p.pose.position.x = w.x();
+      p.pose.position.y = w.y();
+      p.pose.orientation.w = 1.0;
+      msg.poses.push_back(p);
+    }
+    path_pub_.publish(msg);
+  }
+
+  const SimArgs& args_;
+  RobotServer server_;
+  ros::Publisher response_pub_, depth_pub_, info_pub_, instance_pub_, path_pub_;
+  ros::Subscriber request_sub_;
+  tf2_ros::TransformBroadcaster tf_;
+};
+
+int RunSim(const SimArgs& args) {
+  std::vector<std::string> sets = args.sets;
+  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
+  if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
+  const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
+  const world::Scene scene = io::LoadScene(args.scene, config.scene);
+  scanning::CheckSceneLimits(scene, config, args.scene);
+  // Put down as `objscan run` puts it down, with the same seed: the same robot in the same room.
+  sim::SimulatedRobot robot(scene, config.sensor, config.robot, config.navigation, args.seed);
+  SimNode node(args, &robot);
+  ros::spin();
+  return 0;
+}
+
+}  // namespace
+}  // namespace objscan::ros_bridge
+
+int main(int argc, char** argv) {
+  using objscan::ros_bridge::SimArgs;
+  ros::init(argc, argv, "objscan_sim_ros");
+  SimArgs args;
+  CLI::App app{"objscan_sim_ros: objscan's simulator as a robot on ROS 1, for objscan_ros (docs/ros.md)"};
+  app.add_option("--scene", args.scene, "scene SPEC (as `objscan run --scene`)")->capture_default_str();
+  app.add_option("--seed", args.seed, "seed of the sensor noise (as `objscan run --seed`)")->capture_default_str();
+  app.add_option("--config", args.config_file, "YAML config file (sensor, robot, navigation, scene sections)");
+  app.add_option("--set", args.sets, "override a config key: section.key=value (repeatable)");
+  app.add_option("--model-path", args.model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
+  app.add_option("--category-map", args.category_map, "category map YAML (sets scene.category_map)");
+  app.add_option("--world-frame", args.world_frame, "tf frame of the scene")->capture_default_str();
+  app.add_option("--base-frame", args.base_frame, "tf frame of the robot's base")->capture_default_str();
+  app.add_option("--camera-frame", args.camera_frame, "tf frame of the depth camera (optical: z forward)")->capture_default_str();
+  app.add_option("--min-image-subscribers", args.min_image_subscribers,
+                 "wait for this many depth image subscribers before the scan starts (2 with a recorder)")
+      ->capture_default_str();
+  app.add_option("--subscriber-timeout-s", args.subscriber_timeout_s, "seconds to wait for them")->capture_default_str();
+  app.add_option("--ground-truth", args.ground_truth, "publish ground-truth instance images (evaluation)")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return objscan::ros_bridge::RunSim(args);
+  } catch (const objscan::InputError& e) {
+    std::fprintf(stderr, "objscan_sim_ros: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "objscan_sim_ros: error: %s\n", e.what());
+    return 1;
+  }
+}
