@@ -1,0 +1,156 @@
+#!/usr/bin/env python3
+"""objscan over ROS 1 end to end (ctest ros.e2e): a ROS master on the loopback interface, the
+simulator as a robot (objscan_sim_ros), objscan_ros scanning a small procedural room through it, and
+rosbag recording the robot's topics. The run over ROS must be the in-process run (`objscan run`, the
+same scene, seed and config) step for step (scripts/compare_runs.py --exact: same views, labels,
+metrics and files), and the bag must open with the robot's topics and one depth image per frame.
+
+Skipped (exit 77, ctest reports it as skipped, never as passed) when objscan was built without
+OBJSCAN_WITH_ROS or ROS 1's tools are missing (scripts/install_deps.sh installs them)."""
+import json, os, shutil, signal, socket, subprocess, sys, tempfile, time
+
+SKIP = 77
+SCENE = "procedural:bathroom:4"
+SEED = "2"
+# A small sensor and a few steps keep the test near half a minute on 2 cores; both runs use them.
+SETS = ["scanner.max_steps=6", "sensor.width_px=320", "sensor.height_px=240", "sensor.fx_px=262.5",
+        "sensor.fy_px=262.5", "sensor.cx_px=159.5", "sensor.cy_px=119.5"]
+ROBOT_TOPICS = ["/camera/depth/image", "/camera/depth/camera_info", "/camera/depth/gt_instance", "/tf",
+                "/objscan/robot_request", "/objscan/robot_response"]
+
+
+def skip(why):
+    print(f"SKIPPED: ros.e2e: {why}", flush=True)
+    sys.exit(SKIP)
+
+
+def fail(why):
+    print(f"FAILED: ros.e2e: {why}", flush=True)
+    sys.exit(1)
+
+
+def free_port():
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_for_port(port, timeout_s):
+    until = time.time() + timeout_s
+    while time.time() < until:
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+            if s.connect_ex(("127.0.0.1", port)) == 0:
+                return True
+        time.sleep(0.1)
+    return False
+
+
+def stop(process, sig=signal.SIGINT, timeout_s=15):
+    """Ends a process this test started (rosbag closes its bag on SIGINT)."""
+    if process is None or process.poll() is not None:
+        return
+    process.send_signal(sig)
+    try:
+        process.wait(timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+
+
+def main():
+    objscan = os.environ.get("OBJSCAN_BINARY", "")
+    node = os.environ.get("OBJSCAN_ROS_BINARY", "")
+    sim = os.environ.get("OBJSCAN_SIM_ROS_BINARY", "")
+    db = os.environ.get("OBJSCAN_TEST_DB", "")
+    source = os.environ.get("OBJSCAN_SOURCE_DIR", "")
+    if not node or not sim or not os.path.exists(node) or not os.path.exists(sim):
+        skip("objscan was built without OBJSCAN_WITH_ROS (ROS 1 not found at configure time; scripts/install_deps.sh)")
+    for tool in ("rosmaster", "rosbag"):
+        if shutil.which(tool) is None:
+            skip(f"'{tool}' is not installed (Debian's ros-core and python3-rosbag; scripts/install_deps.sh)")
+    try:
+        import rosbag  # noqa: F401  (Debian's python3-rosbag, for the system python3)
+    except ImportError:
+        skip(f"the Python module rosbag is not importable by {sys.executable} (python3-rosbag)")
+    if not os.path.exists(db):
+        fail(f"the test database {db!r} is missing (the small_db fixture)")
+
+    work = tempfile.mkdtemp(prefix="objscan-ros-e2e-")
+    port = free_port()
+    env = dict(os.environ)
+    env.update({"ROS_MASTER_URI": f"http://127.0.0.1:{port}", "ROS_IP": "127.0.0.1", "ROS_HOSTNAME": "127.0.0.1",
+                "ROS_HOME": os.path.join(work, "ros_home"), "ROS_LOG_DIR": os.path.join(work, "ros_log")})
+    env.pop("ROS_NAMESPACE", None)
+    sets = [a for s in SETS for a in ("--set", s)]
+    bag_path = os.path.join(work, "run.bag")
+    master = sim_proc = recorder = None
+    logs = {name: open(os.path.join(work, name + ".log"), "w") for name in ("master", "sim", "rosbag")}
+    started = time.time()
+    try:
+        master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=logs["master"],
+                                  stderr=subprocess.STDOUT)
+        if not wait_for_port(port, 20):
+            fail(f"no ROS master on 127.0.0.1:{port} after 20 s (see {work}/master.log)")
+        # Two image subscribers, objscan_ros and the recorder: the scan starts once both listen.
+        sim_proc = subprocess.Popen([sim, "--scene", SCENE, "--seed", SEED, "--min-image-subscribers", "2"] + sets,
+                                    env=env, stdout=logs["sim"], stderr=subprocess.STDOUT)
+        recorder = subprocess.Popen(["rosbag", "record", "--tcpnodelay", "-O", bag_path] + ROBOT_TOPICS, env=env,
+                                    stdout=logs["rosbag"], stderr=subprocess.STDOUT)
+        ros_out = os.path.join(work, "ros")
+        ros_run = subprocess.run([node, "--scene", SCENE, "--db", db, "--seed", SEED, "--out", ros_out, "--quiet"] + sets,
+                                 env=env, capture_output=True, text=True, timeout=600)
+        print(f"objscan_ros ({time.time() - started:.1f} s): exit {ros_run.returncode}\n{ros_run.stdout}{ros_run.stderr}",
+              flush=True)
+        if ros_run.returncode != 0:
+            fail("objscan_ros failed")
+    finally:
+        stop(recorder)
+        stop(sim_proc)
+        stop(master)
+        for f in logs.values():
+            f.close()
+
+    # The same scan in one process.
+    local_out = os.path.join(work, "local")
+    local = subprocess.run([objscan, "run", "--scene", SCENE, "--db", db, "--seed", SEED, "--out", local_out, "--quiet"]
+                           + sets, capture_output=True, text=True, timeout=600)
+    if local.returncode != 0:
+        fail(f"objscan run failed: {local.stderr}")
+    compare = subprocess.run([sys.executable, os.path.join(source, "scripts", "compare_runs.py"), "--exact", local_out,
+                              ros_out], capture_output=True, text=True)
+    print(compare.stdout, flush=True)
+    if compare.returncode != 0:
+        fail(f"the run over ROS differs from the run in one process (kept in {work})")
+    run = json.load(open(os.path.join(ros_out, "run.json")))
+    if run.get("metrics") is None or not run.get("steps"):
+        fail("run.json has no steps or no metrics")
+    frames = sum(s.get("views", 0) for s in run["steps"])
+
+    # The bag: the robot's topics, one depth image (with its camera info and instances) per frame.
+    import rosbag
+    with rosbag.Bag(bag_path) as bag:
+        info = bag.get_type_and_topic_info()
+        counts = {t: info.topics[t].message_count for t in info.topics}
+        print(f"bag: {os.path.getsize(bag_path) / 1e6:.1f} MB, {counts}", flush=True)
+        for topic in ROBOT_TOPICS:
+            if counts.get(topic, 0) == 0:
+                fail(f"the bag has no {topic}")
+        for topic in ("/camera/depth/image", "/camera/depth/camera_info", "/camera/depth/gt_instance"):
+            if counts[topic] != frames:
+                fail(f"the bag has {counts[topic]} messages on {topic}, the run took {frames} frames")
+        if info.topics["/camera/depth/image"].msg_type != "sensor_msgs/Image":
+            fail("the depth topic is not sensor_msgs/Image")
+        # Played back: every depth image reads as the 32FC1 frame the run fused, with valid depths.
+        read = 0
+        for _, msg, _ in bag.read_messages(topics=["/camera/depth/image"]):
+            if msg.encoding != "32FC1" or msg.width != 320 or msg.height != 240 or len(msg.data) != 320 * 240 * 4:
+                fail(f"depth image {read} is {msg.encoding} {msg.width}x{msg.height}")
+            read += 1
+        if read != frames:
+            fail(f"read {read} depth images back, expected {frames}")
+    print(f"ros.e2e: passed in {time.time() - started:.1f} s ({frames} frames, {len(run['steps'])} steps)", flush=True)
+    shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
