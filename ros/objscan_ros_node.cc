@@ -148,8 +148,8 @@ class RosLink : public RobotLink {
     };
     if (!SpinUntil(args_.connect_timeout_s, connected)) {
       throw LinkError("no robot on " + request_pub_.getTopic() + ", " + response_sub_.getTopic() + ", " +
-                      depth_sub_.getTopic() + " and " + info_sub_.getTopic() +
-                      (ground_truth_ ? " and " + instance_sub_.getTopic() : std::string()) + " within " +
+                      depth_sub_.getTopic() + ", " + info_sub_.getTopic() +
+                      (ground_truth_ ? ", " + instance_sub_.getTopic() : std::string()) + " within " +
                       Seconds(args_.connect_timeout_s) + " (is objscan_sim_ros or the robot's bridge running?)");
     }
   }
@@ -240,6 +240,10 @@ int RunNode(const NodeArgs& args) {
   }
   const app::RunDatabase database = app::LoadRunDatabase(args.db, args.scene, config, args.quiet);
 
+  // Without a master roscpp would wait for one for ever.
+  if (!ros::master::check()) {
+    throw LinkError("no ROS master at " + ros::master::getURI() + " (start roscore, or set ROS_MASTER_URI)");
+  }
   RosLink link(args, scene.has_value());
   RemotePlatform robot(&link, config.robot);
   ScanDisplay display(args.world_frame, database.database);

@@ -13,7 +13,7 @@ SKIP = 77
 SCENE = "procedural:bathroom:4"
 SEED = "2"
 # A small sensor and a few steps keep the test near half a minute on 2 cores; both runs use them.
-SETS = ["scanner.max_steps=6", "sensor.width_px=320", "sensor.height_px=240", "sensor.fx_px=262.5",
+SETS = ["scanner.max_steps=12", "sensor.width_px=320", "sensor.height_px=240", "sensor.fx_px=262.5",
         "sensor.fy_px=262.5", "sensor.cx_px=159.5", "sensor.cy_px=119.5"]
 ROBOT_TOPICS = ["/camera/depth/image", "/camera/depth/camera_info", "/camera/depth/gt_instance", "/tf",
                 "/objscan/robot_request", "/objscan/robot_response"]
