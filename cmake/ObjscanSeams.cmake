@@ -81,3 +81,20 @@ endfunction()
 set(OBJSCAN_METHOD_LIBRARIES objscan_mapping objscan_segmentation objscan_recognition objscan_planning objscan_scanning)
 objscan_forbid_links(TARGETS ${OBJSCAN_METHOD_LIBRARIES} FORBIDDEN objscan_sim)
 objscan_forbid_includes(FOLDERS mapping segmentation recognition planning scanning FORBIDDEN sim)
+
+# ROS stays in ros/'s glue (ros_messages.*, the two nodes): no file of src/objscan nor of the ROS-free
+# bridge (ros/bridge/, which a ROS 2 bridge reuses) includes a ROS 1 header.
+function(objscan_forbid_ros_includes)
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/objscan/*.h ${PROJECT_SOURCE_DIR}/src/objscan/*.cc
+       ${PROJECT_SOURCE_DIR}/ros/bridge/*.h ${PROJECT_SOURCE_DIR}/ros/bridge/*.cc)
+  foreach(source ${sources})
+    file(STRINGS ${source} hits REGEX
+         "#include [<\"](ros|tf|tf2|tf2_ros|std_msgs|geometry_msgs|sensor_msgs|nav_msgs|visualization_msgs|rosbag)/")
+    if(hits)
+      file(RELATIVE_PATH relative ${PROJECT_SOURCE_DIR} ${source})
+      message(FATAL_ERROR "${relative} includes a ROS header: ROS headers belong in ros/'s glue only "
+                          "(cmake/ObjscanSeams.cmake, docs/ros.md)")
+    endif()
+  endforeach()
+endfunction()
+objscan_forbid_ros_includes()
