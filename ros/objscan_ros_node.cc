@@ -36,10 +36,7 @@ struct NodeArgs {
   std::string db;
   std::string out = "objscan-out";
   std::uint64_t seed = 1;
-  std::string config_file;
-  std::vector<std::string> sets;
-  std::string model_path;
-  std::string category_map;
+  app::ConfigArgs config;
   bool quiet = false;
   bool save_frames = false;
   std::string world_frame = "world";
@@ -228,10 +225,7 @@ class ScanDisplay {
 };
 
 int RunNode(const NodeArgs& args) {
-  std::vector<std::string> sets = args.sets;
-  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
-  if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
-  const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
+  const scanning::SystemConfig config = app::LoadRunConfig(args.config);
   // The scene is ground truth for evaluation only: the scan sees what the robot's camera sends.
   std::optional<world::Scene> scene;
   if (!args.scene.empty()) {
@@ -283,10 +277,7 @@ int main(int argc, char** argv) {
   app.add_option("--db", args.db, "model database file (default: the built-in one for --scene, as `objscan run`)");
   app.add_option("--out", args.out, "output folder (as `objscan run`)")->capture_default_str();
   app.add_option("--seed", args.seed, "the run's seed (run.json; the simulator's noise is seeded by objscan_sim_ros)")->capture_default_str();
-  app.add_option("--config", args.config_file, "YAML config file (see config/default.yaml)");
-  app.add_option("--set", args.sets, "override a config key: section.key=value (repeatable)");
-  app.add_option("--model-path", args.model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
-  app.add_option("--category-map", args.category_map, "category map YAML (sets scene.category_map)");
+  objscan::app::AddConfigOptions(&app, &args.config);
   app.add_flag("--quiet", args.quiet, "no progress output on stderr");
   app.add_flag("--save-frames", args.save_frames, "also write every depth image to OUT/frames");
   app.add_option("--world-frame", args.world_frame, "the tf frame the scan is built in")->capture_default_str();
@@ -298,13 +289,5 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  try {
-    return objscan::ros_bridge::RunNode(args);
-  } catch (const objscan::InputError& e) {
-    std::fprintf(stderr, "objscan_ros: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "objscan_ros: error: %s\n", e.what());
-    return 1;
-  }
+  return objscan::app::ReportErrors("objscan_ros", [&args] { return objscan::ros_bridge::RunNode(args); });
 }

@@ -19,6 +19,7 @@
 #include "objscan/sim/simulated_robot.h"
 #include "robot_server.h"
 #include "ros_messages.h"
+#include "run_scan.h"
 
 namespace objscan::ros_bridge {
 namespace {
@@ -26,10 +27,7 @@ namespace {
 struct SimArgs {
   std::string scene = "procedural:bedroom:1";
   std::uint64_t seed = 1;
-  std::string config_file;
-  std::vector<std::string> sets;
-  std::string model_path;
-  std::string category_map;
+  app::ConfigArgs config;
   std::string world_frame = "world";
   std::string base_frame = "base_link";
   std::string camera_frame = "camera_depth_optical_frame";
@@ -143,10 +141,7 @@ class SimNode {
 };
 
 int RunSim(const SimArgs& args) {
-  std::vector<std::string> sets = args.sets;
-  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + args.model_path);
-  if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
-  const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
+  const scanning::SystemConfig config = app::LoadRunConfig(args.config);
   const world::Scene scene = io::LoadScene(args.scene, config.scene);
   scanning::CheckSceneLimits(scene, config, args.scene);
   // Put down as `objscan run` puts it down, with the same seed: the same robot in the same room.
@@ -166,10 +161,7 @@ int main(int argc, char** argv) {
   CLI::App app{"objscan_sim_ros: objscan's simulator as a robot on ROS 1, for objscan_ros (docs/ros.md)"};
   app.add_option("--scene", args.scene, "scene SPEC (as `objscan run --scene`)")->capture_default_str();
   app.add_option("--seed", args.seed, "seed of the sensor noise (as `objscan run --seed`)")->capture_default_str();
-  app.add_option("--config", args.config_file, "YAML config file (sensor, robot, navigation, scene sections)");
-  app.add_option("--set", args.sets, "override a config key: section.key=value (repeatable)");
-  app.add_option("--model-path", args.model_path, "extra folders for Gazebo model:// URIs (colon-separated)");
-  app.add_option("--category-map", args.category_map, "category map YAML (sets scene.category_map)");
+  objscan::app::AddConfigOptions(&app, &args.config);
   app.add_option("--world-frame", args.world_frame, "tf frame of the scene")->capture_default_str();
   app.add_option("--base-frame", args.base_frame, "tf frame of the robot's base")->capture_default_str();
   app.add_option("--camera-frame", args.camera_frame, "tf frame of the depth camera (optical: z forward)")->capture_default_str();
@@ -183,13 +175,5 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  try {
-    return objscan::ros_bridge::RunSim(args);
-  } catch (const objscan::InputError& e) {
-    std::fprintf(stderr, "objscan_sim_ros: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "objscan_sim_ros: error: %s\n", e.what());
-    return 1;
-  }
+  return objscan::app::ReportErrors("objscan_sim_ros", [&args] { return objscan::ros_bridge::RunSim(args); });
 }

@@ -21,22 +21,14 @@ struct RunArgs {
   std::string db;
   std::string out = "objscan-out";
   std::uint64_t seed = 1;
-  std::string config_file;
-  std::vector<std::string> sets;
-  std::vector<std::string> model_path;
-  std::string category_map;
-  bool doors_open = false;
+  ConfigArgs config;
   bool print_config = false;
   bool quiet = false;
   bool save_frames = false;
 };
 
 int RunScan(const RunArgs& args) {
-  std::vector<std::string> sets = args.sets;
-  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + JoinModelPath(args.model_path));
-  if (args.doors_open) sets.push_back("scene.doors_open=true");
-  if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
-  const scanning::SystemConfig config = scanning::LoadSystemConfig(args.config_file, sets);
+  const scanning::SystemConfig config = LoadRunConfig(args.config);
   if (args.print_config) {
     std::fputs(scanning::ToYaml(config).c_str(), stdout);
     return 0;
@@ -75,13 +67,7 @@ void AddRunCommand(CLI::App& root, RunFn* run) {
   cmd->add_option("--db", args->db, "model database file (default: the built-in procedural database for procedural scenes, the built-in real one, the Sweet Home 3D library, for every other scene; built once and cached)");
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--seed", args->seed, "random seed (sensor noise and every random choice)")->capture_default_str();
-  cmd->add_option("--config", args->config_file, "YAML config file (see config/default.yaml)");
-  cmd->add_option("--set", args->sets, "override a config key: section.key=value (repeatable)");
-  AddModelPathOption(cmd, &args->model_path, " (sets scene.model_path)");
-  cmd->add_flag("--doors-open", args->doors_open,
-                "treat doors as open: remove every object of category door, for a scan of the whole house "
-                "(sets scene.doors_open)");
-  cmd->add_option("--category-map", args->category_map, "category map YAML (sets scene.category_map)");
+  AddConfigOptions(cmd, &args->config);
   cmd->add_flag("--print-config", args->print_config, "print the effective configuration as YAML and exit");
   cmd->add_flag("--quiet", args->quiet, "no progress output on stderr");
   cmd->add_flag("--save-frames", args->save_frames,

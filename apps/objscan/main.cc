@@ -3,7 +3,7 @@
 #include <exception>
 
 #include "commands.h"
-#include "objscan/common/error.h"
+#include "run_scan.h"
 
 int main(int argc, char** argv) {
   CLI::App root{
@@ -24,13 +24,5 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return root.exit(e);
   }
-  try {
-    return run ? run() : 0;
-  } catch (const objscan::InputError& e) {
-    std::fprintf(stderr, "objscan: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "objscan: error: %s\n", e.what());
-    return 1;
-  }
+  return objscan::app::ReportErrors("objscan", [&run] { return run ? run() : 0; });
 }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <set>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
@@ -104,6 +105,36 @@ double CpuSeconds() {
 }
 
 }  // namespace
+
+void AddConfigOptions(CLI::App* app, ConfigArgs* args) {
+  app->add_option("--config", args->config_file, "YAML config file (see config/default.yaml)");
+  app->add_option("--set", args->sets, "override a config key: section.key=value (repeatable)");
+  AddModelPathOption(app, &args->model_path, " (sets scene.model_path)");
+  app->add_flag("--doors-open", args->doors_open,
+                "treat doors as open: remove every object of category door, for a scan of the whole house "
+                "(sets scene.doors_open)");
+  app->add_option("--category-map", args->category_map, "category map YAML (sets scene.category_map)");
+}
+
+scanning::SystemConfig LoadRunConfig(const ConfigArgs& args) {
+  std::vector<std::string> sets = args.sets;
+  if (!args.model_path.empty()) sets.push_back("scene.model_path=" + JoinModelPath(args.model_path));
+  if (args.doors_open) sets.push_back("scene.doors_open=true");
+  if (!args.category_map.empty()) sets.push_back("scene.category_map=" + args.category_map);
+  return scanning::LoadSystemConfig(args.config_file, sets);
+}
+
+int ReportErrors(const char* program, const std::function<int()>& run) {
+  try {
+    return run();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return 1;
+  }
+}
 
 RunDatabase LoadRunDatabase(const std::string& db_path, const std::string& scene_spec,
                             const scanning::SystemConfig& config, bool quiet) {

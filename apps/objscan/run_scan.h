@@ -14,7 +14,27 @@
 #include "objscan/scanning/system_config.h"
 #include "objscan/world/scene.h"
 
+namespace CLI {
+class App;
+}  // namespace CLI
+
 namespace objscan::app {
+
+// The options every program that scans takes for its configuration, as `objscan run` spells them.
+struct ConfigArgs {
+  std::string config_file;         // --config
+  std::vector<std::string> sets;   // --set key=value...
+  std::vector<std::string> model_path;  // --model-path, repeatable (scene.model_path)
+  std::string category_map;        // --category-map (scene.category_map)
+  bool doors_open = false;         // --doors-open (scene.doors_open)
+};
+void AddConfigOptions(CLI::App* app, ConfigArgs* args);
+// The effective configuration (scanning::LoadSystemConfig); throws InputError naming the key.
+scanning::SystemConfig LoadRunConfig(const ConfigArgs& args);
+
+// Runs `run` as a program's main does: bad input (InputError) is one line "<program>: error: ..." and
+// exit code 2, any other failure one such line and 1.
+int ReportErrors(const char* program, const std::function<int()>& run);
 
 // The model database of a run, loaded and checked (an empty database is bad input), with the
 // built-in training databases its category recognizer also reads built now (with progress).

@@ -11,22 +11,8 @@
 namespace objscan::ros_bridge {
 namespace {
 
-world::Scene CabinetRoom() {
-  world::Scene scene = sim::testing::Room(6, 4);
-  scene.Add(sim::testing::BoxObject({4.5, 0.5, 0.0}, {5.5, 1.0, 0.9}));
-  return scene;
-}
-
-render::SensorOptions SmallSensor() {
-  render::SensorOptions sensor;
-  sensor.width_px = 160;
-  sensor.height_px = 120;
-  sensor.fx_px = sensor.fy_px = 131.25;
-  sensor.cx_px = 79.5;
-  sensor.cy_px = 59.5;
-  sensor.threads = 1;
-  return sensor;
-}
+using sim::testing::CabinetRoom;
+using sim::testing::SmallSensor;
 
 platform::BasePose Start() {
   platform::BasePose start;

@@ -15,26 +15,9 @@
 namespace objscan::sim {
 namespace {
 
-using testing::BoxObject;
+using testing::CabinetRoom;
 using testing::Room;
-
-// A 6 m x 4 m room with a cabinet in its far half.
-world::Scene CabinetRoom() {
-  world::Scene scene = Room(6, 4);
-  scene.Add(BoxObject({4.5, 0.5, 0.0}, {5.5, 1.0, 0.9}));
-  return scene;
-}
-
-render::SensorOptions SmallSensor() {
-  render::SensorOptions sensor;
-  sensor.width_px = 160;
-  sensor.height_px = 120;
-  sensor.fx_px = sensor.fy_px = 131.25;
-  sensor.cx_px = 79.5;
-  sensor.cy_px = 59.5;
-  sensor.threads = 1;
-  return sensor;
-}
+using testing::SmallSensor;
 
 TEST(SimulatedRobotTest, KeepsThePlatformContract) {
   const world::Scene scene = CabinetRoom();

@@ -1,6 +1,7 @@
 #pragma once
 // Small analytic scenes shared by the sim tests (test-only, header-only).
 #include "objscan/geometry/mesh.h"
+#include "objscan/render/depth_camera.h"
 #include "objscan/world/scene.h"
 
 namespace objscan::sim::testing {
@@ -31,6 +32,25 @@ inline world::Scene Room(double size_x, double size_y) {
   scene.Add(BoxObject({-t, 0, 0}, {0, size_y, h}, world::Category::kWall));
   scene.Add(BoxObject({size_x, 0, 0}, {size_x + t, size_y, h}, world::Category::kWall));
   return scene;
+}
+
+// A 6 m x 4 m room with a cabinet in its far half (the platform contract's room).
+inline world::Scene CabinetRoom() {
+  world::Scene scene = Room(6, 4);
+  scene.Add(BoxObject({4.5, 0.5, 0.0}, {5.5, 1.0, 0.9}));
+  return scene;
+}
+
+// A quarter-size sensor (160 x 120, the same field of view), one thread: quick frames.
+inline render::SensorOptions SmallSensor() {
+  render::SensorOptions sensor;
+  sensor.width_px = 160;
+  sensor.height_px = 120;
+  sensor.fx_px = sensor.fy_px = 131.25;
+  sensor.cx_px = 79.5;
+  sensor.cy_px = 59.5;
+  sensor.threads = 1;
+  return sensor;
 }
 
 }  // namespace objscan::sim::testing
