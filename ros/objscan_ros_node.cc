@@ -10,6 +10,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <deque>
 #include <functional>

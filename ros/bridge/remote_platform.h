@@ -51,8 +51,7 @@ class RemotePlatform : public platform::Platform {
 
   // Why the link failed (empty while it works); the scan after it saw and moved no more.
   const std::string& failure() const { return failure_; }
-  // Requests sent, maps among them.
-  std::uint64_t requests() const { return next_id_ - 1; }
+  // Maps sent so far (each a new revision).
   std::uint64_t maps_sent() const { return map_revision_; }
 
  private:

@@ -55,30 +55,28 @@ RobotResponse RobotServer::Serve(const RobotRequest& request) {
 
 void RobotServer::Dispatch(const RobotRequest& request, RobotResponse* out) {
   RobotResponse& response = *out;
-  {
-    switch (request.kind) {
-      case RequestKind::kHello:
-        response.world_name = robot_->world_name();
-        response.intrinsics = robot_->intrinsics();
-        break;
-      case RequestKind::kMap: {
-        const NavigationMap& m = request.map;
-        navigator_ = std::make_unique<navigation::Navigator>(SentGrid(m.grid), m.robot_radius_m, m.robot_height_m,
-                                                             m.options);
-        map_revision_ = m.revision;
-        break;
-      }
-      case RequestKind::kCheckReach: response.status = robot_->CheckReach(request.T_world_camera, *navigator_); break;
-      case RequestKind::kMoveCamera: {
-        const platform::Move move = robot_->MoveCamera(request.T_world_camera, *navigator_);
-        response.status = move.status;
-        response.path = move.path;
-        response.T_world_camera_taken = move.T_world_camera;
-        break;
-      }
-      case RequestKind::kTurnCamera: response.T_world_camera_taken = robot_->TurnCamera(request.T_world_camera); break;
-      case RequestKind::kCapture: break;
+  switch (request.kind) {
+    case RequestKind::kHello:
+      response.world_name = robot_->world_name();
+      response.intrinsics = robot_->intrinsics();
+      break;
+    case RequestKind::kMap: {
+      const NavigationMap& m = request.map;
+      navigator_ = std::make_unique<navigation::Navigator>(SentGrid(m.grid), m.robot_radius_m, m.robot_height_m,
+                                                           m.options);
+      map_revision_ = m.revision;
+      break;
     }
+    case RequestKind::kCheckReach: response.status = robot_->CheckReach(request.T_world_camera, *navigator_); break;
+    case RequestKind::kMoveCamera: {
+      const platform::Move move = robot_->MoveCamera(request.T_world_camera, *navigator_);
+      response.status = move.status;
+      response.path = move.path;
+      response.T_world_camera_taken = move.T_world_camera;
+      break;
+    }
+    case RequestKind::kTurnCamera: response.T_world_camera_taken = robot_->TurnCamera(request.T_world_camera); break;
+    case RequestKind::kCapture: break;
   }
 }
 
