@@ -34,6 +34,7 @@ struct SimArgs {
   int min_image_subscribers = 1;
   double subscriber_timeout_s = 30.0;
   bool ground_truth = true;
+  int silent_after_requests = 0;
 };
 
 class SimNode {
@@ -52,6 +53,8 @@ class SimNode {
 
  private:
   void OnRequest(const std_msgs::String::ConstPtr& msg) {
+    // A robot that falls silent, to show what objscan_ros does then (tests/ros/test_ros_e2e.py).
+    if (args_.silent_after_requests > 0 && ++requests_ > args_.silent_after_requests) return;
     RobotRequest request;
     try {
       request = DecodeRequest(msg->data);
@@ -134,6 +137,7 @@ class SimNode {
   }
 
   const SimArgs& args_;
+  int requests_ = 0;
   RobotServer server_;
   ros::Publisher response_pub_, depth_pub_, info_pub_, instance_pub_, path_pub_;
   ros::Subscriber request_sub_;
@@ -169,6 +173,9 @@ int main(int argc, char** argv) {
                  "wait for this many depth image subscribers before the scan starts (2 with a recorder)")
       ->capture_default_str();
   app.add_option("--subscriber-timeout-s", args.subscriber_timeout_s, "seconds to wait for them")->capture_default_str();
+  app.add_option("--silent-after-requests", args.silent_after_requests,
+                 "answer this many requests, then none (to test objscan_ros's timeouts; 0 = always answer)")
+      ->capture_default_str();
   app.add_option("--ground-truth", args.ground_truth, "publish ground-truth instance images (evaluation)")->capture_default_str();
   try {
     app.parse(argc, argv);

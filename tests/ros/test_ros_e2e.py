@@ -4,6 +4,8 @@ simulator as a robot (objscan_sim_ros), objscan_ros scanning a small procedural 
 rosbag recording the robot's topics. The run over ROS must be the in-process run (`objscan run`, the
 same scene, seed and config) step for step (scripts/compare_runs.py --exact: same views, labels,
 metrics and files), and the bag must open with the robot's topics and one depth image per frame.
+Then a robot that falls silent mid-scan must end objscan_ros with one line, exit code 3 and the
+scan so far written.
 
 Skipped (exit 77, ctest reports it as skipped, never as passed) when objscan was built without
 OBJSCAN_WITH_ROS or ROS 1's tools are missing (scripts/install_deps.sh installs them)."""
@@ -103,6 +105,24 @@ def main():
               flush=True)
         if ros_run.returncode != 0:
             fail("objscan_ros failed")
+        stop(recorder)
+        stop(sim_proc)
+
+        # A robot that falls silent mid-scan: one clear line, exit code 3, and the scan so far written.
+        sim_proc = subprocess.Popen([sim, "--scene", SCENE, "--seed", SEED, "--silent-after-requests", "25"] + sets,
+                                    env=env, stdout=logs["sim"], stderr=subprocess.STDOUT)
+        silent_out = os.path.join(work, "silent")
+        silent = subprocess.run([node, "--scene", SCENE, "--db", db, "--seed", SEED, "--out", silent_out, "--quiet",
+                                 "--request-timeout-s", "2", "--frame-timeout-s", "2"] + sets,
+                                env=env, capture_output=True, text=True, timeout=600)
+        print(f"objscan_ros, robot silent after 25 requests: exit {silent.returncode}\n{silent.stderr}", flush=True)
+        lines = [l for l in silent.stderr.splitlines() if l.strip()]
+        if silent.returncode != 3 or len(lines) != 1 or "the robot link failed" not in lines[0] \
+                or "within 2 s" not in lines[0]:
+            fail("a silent robot did not end the scan with exit code 3 and one line naming what did not come")
+        partial = json.load(open(os.path.join(silent_out, "run.json")))
+        if not partial.get("steps") or not os.path.exists(os.path.join(silent_out, "scene.ply")):
+            fail("the scan before the robot fell silent was not written")
     finally:
         stop(recorder)
         stop(sim_proc)
