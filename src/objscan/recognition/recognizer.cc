@@ -256,15 +256,24 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
   const Eigen::Affine3f T = m->alignment.T_item_query.cast<float>();
   const double tau = std::max(options_.inlier_tolerance_m, options_.inlier_tolerance_fraction * diag);
   const float tau2 = static_cast<float>(tau * tau);
-  // The query's inliers are always counted (one nearest-neighbour pass, a small part of the
-  // alignment's cost): M(c) reports P, R and F whatever the rank weights.
+  // The query's inliers are always counted: M(c) reports P, R and F whatever the rank weights. A
+  // refined alignment already gives the mean squared distance, so only "a keypoint within tau?" is
+  // asked, a search bounded by tau that prunes almost the whole tree (the bound just above tau2
+  // makes its strict test d2 <= tau2, the same count as the unbounded search gives).
   double sum = 0.0;
   int query_inliers = 0;
-  for (const auto& p : points) {
-    float d2 = 0.f;
-    target.tree().Nearest(T * p, &d2);
-    sum += d2;
-    if (d2 <= tau2) ++query_inliers;
+  if (refined) {
+    const float bound_d2 = std::nextafter(tau2, std::numeric_limits<float>::infinity());
+    for (const auto& p : points) {
+      if (target.tree().NearestBounded(T * p, bound_d2, -1, nullptr) >= 0) ++query_inliers;
+    }
+  } else {
+    for (const auto& p : points) {
+      float d2 = 0.f;
+      target.tree().Nearest(T * p, &d2);
+      sum += d2;
+      if (d2 <= tau2) ++query_inliers;
+    }
   }
   o.similarity_m2 = refined ? m->alignment.mean_squared_distance_m2 : sum / static_cast<double>(points.size());
   // d(m, c): entry keypoints mapped into the query frame (distances there are 1/scale of the entry
