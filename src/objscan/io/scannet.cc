@@ -157,6 +157,19 @@ std::optional<Eigen::Matrix4d> ReadAxisAlignment(const std::string& path) {
   return std::nullopt;
 }
 
+// Applies the levelling transform and refuses a scan whose levelled vertices are out of range (before
+// instance inference grids them).
+void LevelScan(const Eigen::Affine3d& T_level, const std::string& mesh_path, std::vector<Eigen::Vector3f>* points) {
+  for (auto& p : *points) {
+    const Eigen::Vector3d levelled = T_level * p.cast<double>();
+    if (!levelled.allFinite() || levelled.cwiseAbs().maxCoeff() > world::kMaxSceneCoordinate_m) {
+      throw InputError(mesh_path + ": vertex coordinates beyond " + std::to_string(static_cast<int>(world::kMaxSceneCoordinate_m)) +
+                       " m once levelled (not a room scan)");
+    }
+    p = levelled.cast<float>();
+  }
+}
+
 // The transform that levels the scan: floor horizontal and at z = 0.
 Eigen::Affine3d LevellingTransform(const std::vector<Eigen::Vector3f>& points, const std::vector<bool>& is_floor,
                                    const std::optional<Eigen::Matrix4d>& axis_alignment) {
@@ -268,8 +281,7 @@ world::Scene LoadScanNetScan(const std::string& spec, const SceneLoadOptions& op
       const int i = vertex_instance[v];
       is_floor[v] = i != kNoObject && instances[static_cast<std::size_t>(i)].category == world::Category::kFloor;
     }
-    const Eigen::Affine3d T_level = LevellingTransform(mesh.points, is_floor, axis_alignment);
-    for (auto& p : mesh.points) p = (T_level * p.cast<double>()).cast<float>();
+    LevelScan(LevellingTransform(mesh.points, is_floor, axis_alignment), mesh_path, &mesh.points);
   } else if (fs::is_regular_file(labels_path, ec)) {
     // No instances in the files: level the scan on its floor labels, then group the labelled pieces
     // into objects (scannet_instances.h).
@@ -284,8 +296,7 @@ world::Scene LoadScanNetScan(const std::string& spec, const SceneLoadOptions& op
       }
       is_floor[v] = it->second;
     }
-    const Eigen::Affine3d T_level = LevellingTransform(mesh.points, is_floor, axis_alignment);
-    for (auto& p : mesh.points) p = (T_level * p.cast<double>()).cast<float>();
+    LevelScan(LevellingTransform(mesh.points, is_floor, axis_alignment), mesh_path, &mesh.points);
     const InferredInstances inferred = InferInstancesFromLabels(mesh.points, mesh.triangles, labels);
     vertex_instance = inferred.vertex_instance;
     std::map<std::string, int> count_of_label;
@@ -302,8 +313,7 @@ world::Scene LoadScanNetScan(const std::string& spec, const SceneLoadOptions& op
                                  " closer than a few centimetres or stacked in one footprint are one object");
   } else if (options.allow_missing) {
     vertex_instance.assign(mesh.points.size(), kNoObject);
-    const Eigen::Affine3d T_level = LevellingTransform(mesh.points, is_floor, axis_alignment);
-    for (auto& p : mesh.points) p = (T_level * p.cast<double>()).cast<float>();
+    LevelScan(LevellingTransform(mesh.points, is_floor, axis_alignment), mesh_path, &mesh.points);
   } else {
     throw InputError(mesh_path + ": no ground truth (needs " + fs::path(aggregation_path).filename().string() + " + " +
                      fs::path(segs_path).filename().string() + ", or " + fs::path(labels_path).filename().string() + ")");

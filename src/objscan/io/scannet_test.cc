@@ -216,6 +216,16 @@ TEST(ScanNetTest, MalformedScansGiveOneLineNamingTheFile) {
     EXPECT_EQ(scene.objects().size(), 2u);
   }
   {
+    // Finite, rigid, but a kilometre-scale shift: the levelled scan is refused before anything grids it.
+    ScanNetFixtureOptions no_aggregation;
+    no_aggregation.aggregation = false;
+    for (const char* id : {"scene0018_00", "scene0019_00"}) {
+      const std::string scan = fresh(id, id == std::string("scene0018_00") ? ScanNetFixtureOptions() : no_aggregation);
+      WriteText(scan + "/" + id + ".txt", "axisAlignment = 1 0 0 1e12 0 1 0 0 0 0 1 0 0 0 0 1\n");
+      ExpectInputError([&] { LoadScene(scan, SceneLoadOptions()); }, "_vh_clean_2.ply: vertex coordinates beyond 10000 m");
+    }
+  }
+  {
     const std::string scan = fresh("scene0017_00");
     WriteText(scan + "/scene0017_00_vh_clean_2.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\n");
     ExpectInputError([&] { LoadScene(scan, SceneLoadOptions()); }, "scene0017_00_vh_clean_2.ply");

@@ -69,6 +69,45 @@ std::string LowerExtension(const std::string& path) {
   return ext;
 }
 
+world::Scene LoadSceneFormat(const std::string& spec, const SceneLoadOptions& options) {
+  options.Validate();
+  if (spec.rfind("procedural:", 0) == 0) return LoadProcedural(spec);
+  const std::string ext = LowerExtension(spec);
+  std::error_code ec;
+  if (!fs::exists(spec, ec)) {
+    throw InputError(spec + ": no such file (a scene is a .world, .yaml/.json, ScanNet scan, mesh file or procedural:CATEGORY:SEED)");
+  }
+  if (ext == ".world" || ext == ".sdf") return LoadGazeboWorld(spec, options);
+  if (ext == ".yaml" || ext == ".yml" || ext == ".json") return LoadSceneFile(spec);
+  if (IsScanNetSpec(spec)) {
+    const CategoryMap categories = CategoryMap::Load(ResolveCategoryMapPath(options.category_map));
+    return LoadScanNetScan(spec, options, categories);
+  }
+  if (IsMeshFile(spec)) return LoadMeshScene(spec);
+  throw InputError(spec + ": unsupported scene format '" + ext +
+                   "' (expected .world, .yaml/.json, a ScanNet scan folder or *_vh_clean_2.ply, "
+                   "obj/ply/off/dae/stl/gltf/glb or procedural:CATEGORY:SEED)");
+}
+
+// Every loader's result passes here: a scene beyond kMaxSceneCoordinate_m is refused, naming the object
+// (furniture first: a generated floor or wall only follows it).
+world::Scene WithinReach(world::Scene scene, const std::string& spec) {
+  for (const bool structural : {false, true}) {
+    for (const world::SceneObject& object : scene.objects()) {
+      if (object.IsStructural() != structural) continue;
+      const geometry::Aabb3 box = scene.ObjectBounds(object);
+      if (box.Empty()) continue;
+      const double reach = std::max(box.min_m.cwiseAbs().maxCoeff(), box.max_m.cwiseAbs().maxCoeff());
+      if (!(reach <= world::kMaxSceneCoordinate_m)) {
+        throw InputError(spec + ": object '" + object.name + "' lies beyond " +
+                         std::to_string(static_cast<int>(world::kMaxSceneCoordinate_m)) +
+                         " m of the origin (not a room or a house)");
+      }
+    }
+  }
+  return scene;
+}
+
 }  // namespace
 
 void SceneLoadOptions::Validate() const {
@@ -104,23 +143,7 @@ world::Scene LoadScene(const std::string& spec, const SceneLoadOptions& options)
 }
 
 world::Scene LoadSceneAsWritten(const std::string& spec, const SceneLoadOptions& options) {
-  options.Validate();
-  if (spec.rfind("procedural:", 0) == 0) return LoadProcedural(spec);
-  const std::string ext = LowerExtension(spec);
-  std::error_code ec;
-  if (!fs::exists(spec, ec)) {
-    throw InputError(spec + ": no such file (a scene is a .world, .yaml/.json, ScanNet scan, mesh file or procedural:CATEGORY:SEED)");
-  }
-  if (ext == ".world" || ext == ".sdf") return LoadGazeboWorld(spec, options);
-  if (ext == ".yaml" || ext == ".yml" || ext == ".json") return LoadSceneFile(spec);
-  if (IsScanNetSpec(spec)) {
-    const CategoryMap categories = CategoryMap::Load(ResolveCategoryMapPath(options.category_map));
-    return LoadScanNetScan(spec, options, categories);
-  }
-  if (IsMeshFile(spec)) return LoadMeshScene(spec);
-  throw InputError(spec + ": unsupported scene format '" + ext +
-                   "' (expected .world, .yaml/.json, a ScanNet scan folder or *_vh_clean_2.ply, "
-                   "obj/ply/off/dae/stl/gltf/glb or procedural:CATEGORY:SEED)");
+  return WithinReach(LoadSceneFormat(spec, options), spec);
 }
 
 }  // namespace objscan::io

@@ -50,6 +50,23 @@ TEST(SceneSpecTest, ProceduralSpecs) {
   ExpectInputError([] { LoadScene("procedural:bedroom", SceneLoadOptions()); }, "procedural:CATEGORY:SEED");
 }
 
+TEST(SceneSpecTest, ScenesFarFromTheOriginAreRefusedInEveryFormat) {
+  TempDir dir;
+  // Finite coordinates, but beyond what the map's integer voxel grids can hold.
+  WriteText(dir.File("w.world"),
+            "<sdf version='1.4'><world name='default'><model name='chair_1'><pose>3e9 0 0 0 0 0</pose><link name='l'>"
+            "<visual name='v'><geometry><box><size>1 1 1</size></box></geometry></visual></link></model></world></sdf>");
+  ExpectInputError([&] { LoadScene(dir.File("w.world"), SceneLoadOptions()); },
+                   "w.world: object 'chair_1' lies beyond 10000 m of the origin");
+  WriteText(dir.File("s.yaml"), "objects:\n  - box: [1, 1, 1]\n    category: bed\n    pose: [0, -2e4, 0, 0, 0, 0]\n");
+  ExpectInputError([&] { LoadScene(dir.File("s.yaml"), SceneLoadOptions()); }, "s.yaml: object");
+  WriteText(dir.File("far.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 1e5\nf 1 2 3\n");
+  ExpectInputError([&] { LoadScene(dir.File("far.obj"), SceneLoadOptions()); }, "beyond 10000 m of the origin");
+  // A house-sized scene away from the origin is fine.
+  WriteText(dir.File("near.yaml"), "objects:\n  - box: [1, 1, 1]\n    category: bed\n    pose: [9000, 0, 0, 0, 0, 0]\n");
+  EXPECT_EQ(LoadScene(dir.File("near.yaml"), SceneLoadOptions()).NumFurniture(), 1u);
+}
+
 TEST(SceneSpecTest, UnknownSpecsAreRejected) {
   TempDir dir;
   ExpectInputError([&] { LoadScene(dir.File("nothing.world"), SceneLoadOptions()); }, "nothing.world");
