@@ -15,8 +15,9 @@
 # seconds, libFuzzer's cov: and ft: figures) and keeps libFuzzer's log in build-sanitize/logs/TARGET.log.
 # Environment: FUZZ_TIMEOUT_S (wall s per input, default 10), FUZZ_RSS_MB (default 2048), FUZZ_MAX_LEN
 # (bytes, default 8192), FUZZ_MAX_TOTAL_TIME_S (stop a target after this long, default 0: no limit),
-# OBJSCAN_JOBS (build jobs, default every core). libFuzzer's slow-unit-* files (inputs that took over
-# 10 s of wall time without timing out) are kept beside the findings but are not findings.
+# FUZZ_SEED (libFuzzer's -seed; default 0: a new one each run), OBJSCAN_JOBS (build jobs, default every
+# core). libFuzzer's slow-unit-* files (inputs that took over 10 s of wall time without timing out) are
+# kept beside the findings but are not findings.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -25,7 +26,7 @@ targets=(gazebo_world scene_file ply model_database config scannet)
 jobs=${OBJSCAN_JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 usage() {
-  sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 }
 
@@ -53,7 +54,7 @@ run_target() {
   ASAN_OPTIONS="halt_on_error=1:detect_leaks=1" UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
   LSAN_OPTIONS="suppressions=${root}/scripts/sanitizers/lsan.supp:print_suppressions=0" \
     "${binary}" -runs="${execs}" -timeout="${FUZZ_TIMEOUT_S:-10}" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
-      -max_len="${FUZZ_MAX_LEN:-8192}" -max_total_time="${FUZZ_MAX_TOTAL_TIME_S:-0}" "${dict[@]}" -print_final_stats=1 -artifact_prefix="${build}/findings/${target}/" \
+      -max_len="${FUZZ_MAX_LEN:-8192}" -max_total_time="${FUZZ_MAX_TOTAL_TIME_S:-0}" -seed="${FUZZ_SEED:-0}" "${dict[@]}" -print_final_stats=1 -artifact_prefix="${build}/findings/${target}/" \
       "${build}/corpus/${target}" "${root}/fuzz/corpus/${target}" >"${log}" 2>&1 || status=$?
   end=$(date +%s.%N)
   local done_line cov ft runs
