@@ -76,6 +76,40 @@ int StructureResult::WallOpeningIndex(const Eigen::Vector3d& p, double min_depth
   return -1;
 }
 
+bool StructureResult::IsPlaneNoise(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                                   double band_m, double min_side_share, double fraction) const {
+  if (points.empty() || normals.size() != points.size() || band_m <= 0.0) return false;
+  constexpr double kParallelMinCos = 0.8660254037844386;  // cos 30 deg
+  const auto straddles = [&](auto&& signed_distance, const Eigen::Vector3d& plane_normal, auto&& spans) {
+    std::size_t in_band = 0, in_front = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector3d p = points[i].cast<double>();
+      const double d = signed_distance(p);
+      if (std::fabs(d) > band_m || !spans(p)) continue;
+      if (std::fabs(normals[i].cast<double>().dot(plane_normal)) < kParallelMinCos) continue;
+      ++in_band;
+      in_front += d > 0.0;
+    }
+    if (in_band == 0 || static_cast<double>(in_band) < fraction * static_cast<double>(points.size())) return false;
+    const double front = static_cast<double>(in_front) / static_cast<double>(in_band);
+    return front >= min_side_share && 1.0 - front >= min_side_share;
+  };
+  if (has_floor &&
+      straddles([&](const Eigen::Vector3d& p) { return p.z() - floor_height_m; }, Eigen::Vector3d::UnitZ(),
+                [](const Eigen::Vector3d&) { return true; })) {
+    return true;
+  }
+  for (const WallPlane& w : walls) {
+    const auto spans = [&](const Eigen::Vector3d& p) {
+      const double s = w.Along(p);
+      return s > w.span_min_m - band_m && s < w.span_max_m + band_m && p.z() > w.z_min_m - band_m &&
+             p.z() < w.z_max_m + band_m;
+    };
+    if (straddles([&](const Eigen::Vector3d& p) { return w.SignedDistance(p); }, w.normal, spans)) return true;
+  }
+  return false;
+}
+
 StructureDetector::StructureDetector(const StructureOptions& options) : options_(options) { options_.Validate(); }
 
 namespace {

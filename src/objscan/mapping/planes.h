@@ -115,6 +115,14 @@ struct StructureResult {
   }
   // The first wall (index into walls) in whose opening p lies, as InWallOpening; -1 for none.
   int WallOpeningIndex(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const;
+  // True when at least `fraction` of the points lie within band_m of one structure plane (the floor,
+  // or a wall within its span widened by band_m) on faces parallel to it (|n . plane normal| >=
+  // cos 30 deg), and at least min_side_share of those lie on each side of the plane. That is the
+  // noise tail of the floor's or a wall's surface, beyond the tolerance that tagged the plane: it
+  // straddles the plane, where the surface of anything standing on the floor or in front of a wall
+  // (and of a door or a window in an opening behind it) lies on one side.
+  bool IsPlaneNoise(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                    double band_m, double min_side_share, double fraction) const;
 };
 
 class StructureDetector {

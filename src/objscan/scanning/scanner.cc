@@ -375,10 +375,15 @@ struct Scanner::State {
     }
   }
 
-  // Whether most of a component lies on the floor or on a detected wall plane (within its span).
+  // Whether most of a component lies on the floor or on a detected wall plane (within its span), in
+  // a wall's reveals, or is the noise around one of those planes.
   bool IsStructureResidue(const segmentation::Component& c) const {
     const double fraction = config.scanner.structure_residue_fraction;
     if (fraction >= 1.0 || c.points.empty()) return false;
+    if (structure.IsPlaneNoise(c.points, c.normals, config.scanner.structure_residue_band_m,
+                               config.scanner.structure_residue_min_side_share, fraction)) {
+      return true;
+    }
     const double d = config.scanner.structure_residue_distance_m;
     const double reveal_m = config.scanner.structure_reveal_depth_m;
     // Across a wall: the element normal within 60 degrees of the wall's direction.

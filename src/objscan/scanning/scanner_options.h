@@ -62,6 +62,13 @@ struct ScannerOptions {
   // ... and so do points inside a wall's thickness on faces across it, up to this depth behind the
   // wall plane: the reveals of door and window openings (StructureResult::InWallReveal). 0 = off.
   double structure_reveal_depth_m = 0.3;
+  // ... and so is a component of which structure_residue_fraction lies within this band of the floor
+  // or of one wall plane, on faces parallel to it, with at least structure_residue_min_side_share of
+  // it on each side of the plane: the noise tail of the plane's surface, past the tolerance that
+  // tagged the plane (StructureResult::IsPlaneNoise). Anything on the floor or at a wall lies on one
+  // side. 0 = off.
+  double structure_residue_band_m = 0.08;
+  double structure_residue_min_side_share = 0.2;
   // Floor and walls are searched again only when the map grew by this share since the last search;
   // in between, new elements are tagged with the known planes (0 = search every step).
   double structure_redetect_growth = 0.1;
@@ -95,6 +102,8 @@ struct ScannerOptions {
     v("structure_residue_fraction", structure_residue_fraction);
     v("structure_residue_distance_m", structure_residue_distance_m);
     v("structure_reveal_depth_m", structure_reveal_depth_m);
+    v("structure_residue_band_m", structure_residue_band_m);
+    v("structure_residue_min_side_share", structure_residue_min_side_share);
     v("structure_redetect_growth", structure_redetect_growth);
     v("space", space);
     v("coverage_views", coverage_views);
@@ -121,6 +130,8 @@ struct ScannerOptions {
     config::RequireNonNegative("scanner.structure_residue_fraction", structure_residue_fraction);
     config::RequireNonNegative("scanner.structure_residue_distance_m", structure_residue_distance_m);
     config::RequireNonNegative("scanner.structure_reveal_depth_m", structure_reveal_depth_m);
+    config::RequireNonNegative("scanner.structure_residue_band_m", structure_residue_band_m);
+    config::RequireInRange("scanner.structure_residue_min_side_share", structure_residue_min_side_share, 0.0, 0.5);
     config::RequireNonNegative("scanner.structure_redetect_growth", structure_redetect_growth);
     space.Validate();
     coverage_views.Validate();
