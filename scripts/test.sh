@@ -68,6 +68,15 @@ excluded=(
   '^RunE2eTest\.StepBudgetGrowsWithTheExploredAreaUpToMaxSteps$'
   # a whole ScanNet scan with metrics: 244 s
   '^RealInputsTest\.ScanNetScanRunsEndToEndWithMetrics$'
+  # whole scans of rooms cut by a barrier or a closed door (the second twice, doors closed and open):
+  # 240 s, 227 s, 216 s. The ScanNet scan with inferred instances stays: its loader is fuzzed, and
+  # what the fuzzer finds there this pass should find in a whole run too.
+  '^RunE2eTest\.UnreachableFrontiersEndTheRunDoneAndAreListed$'
+  '^RunE2eTest\.ObjectsWithoutAValidViewGetAnotherChanceBeforeUnreachableFrontiersEndTheRun$'
+  '^RealInputsTest\.ARoomBehindAClosedDoorIsListedAndDoorsOpenReachesIt$'
+  # a run, `objscan view` and Chromium's screenshots of the page: 151 s, most of it in Chromium,
+  # which is not instrumented
+  '^ViewE2eTest\.PageIsSelfContainedAndChromiumShowsTheRunStepByStep$'
   # start Slurm daemons and run a sharded bench through them; what they test is the script and the
   # merge, not objscan's memory, and the runs they make are those of the Release pass; small_db is
   # their fixture (a database build). The Python module is not built here: an instrumented extension
