@@ -407,14 +407,15 @@ TEST(RunE2eTest, ObjectsWithoutAValidViewGetAnotherChanceBeforeUnreachableFronti
   const std::string db = ScratchWithSmallDatabase("objscan_run_e2e_barrier", &dir);
   ASSERT_FALSE(db.empty());
   // A 4 m x 3 m room cut in two by a 0.9 m barrier (an object, not a wall): the robot sees over it but
-  // cannot drive round it, so the barrier's far side has no reachable view and the floor behind it
+  // cannot drive round it, so the low chair behind it has no reachable view and the floor behind it
   // leaves frontiers no path reaches.
   WriteText(dir / "room.yaml",
             "name: barrier_room\nwalls:\n  - {min: [-0.1, -0.1, 0], max: [4.1, 0, 2.5]}\n"
             "  - {min: [-0.1, 3, 0], max: [4.1, 3.1, 2.5]}\n  - {min: [-0.1, 0, 0], max: [0, 3, 2.5]}\n"
             "  - {min: [4, 0, 0], max: [4.1, 3, 2.5]}\nobjects:\n"
             "  - {box: [0.1, 3.0, 0.9], category: other, pose: [2.0, 1.5, 0, 0, 0, 0], name: barrier}\n"
-            "  - {box: [0.5, 0.5, 0.9], category: chair, pose: [0.6, 0.6, 0, 0, 0, 0], name: chair_1}\n");
+            "  - {box: [0.5, 0.5, 0.9], category: chair, pose: [0.6, 0.6, 0, 0, 0, 0], name: chair_1}\n"
+            "  - {box: [0.4, 0.4, 0.5], category: chair, pose: [3.3, 1.5, 0, 0, 0, 0], name: chair_2}\n");
   const Result r = RunObjscan("run --scene " + (dir / "room.yaml").string() + " --db " + db + " --quiet --out " +
                               (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -427,11 +428,16 @@ TEST(RunE2eTest, ObjectsWithoutAValidViewGetAnotherChanceBeforeUnreachableFronti
     }
   }
   EXPECT_GE(chances, 1);
-  // The barrier is left for want of a reachable view, and said so.
+  // The chair behind the barrier is left for want of a reachable view, and said so. (This room once
+  // passed on the far wall's depth noise taken for an object; that noise is structure now.)
   ASSERT_FALSE(run["unreachable"]["objects"].empty()) << run["unreachable"].dump();
   const int left = run["unreachable"]["objects"][0];
   bool listed = false;
-  for (const auto& o : run["objects"]) listed |= o["id"] == left && !o["complete"].get<bool>();
+  for (const auto& o : run["objects"]) {
+    if (o["id"] != left) continue;
+    listed = !o["complete"].get<bool>();
+    EXPECT_EQ(o.value("gt_instance", 0), 8) << "the object left is chair_2 (instance 8): " << o.dump();
+  }
   EXPECT_TRUE(listed);
 }
 
