@@ -72,7 +72,7 @@ struct SizePlausibilityOptions {
   // unrecognized. The threshold keeps guesses out: most such labels are right above ~0.92.
   double relabel_min_objectness = 0.92;
   // Before the check, pieces too small for their label join an adjacent object whose category the
-  // union fits (scanning/size_regrouping.h; report rule regroup_by_size).
+  // union fits (scanning/report/size_regrouping.h; report rule regroup_by_size).
   double adjacency_m = 0.05;  // pieces with points this close are adjacent for the regrouping
   // Beyond that, a piece standing under another with at most this gap between the lower one's top
   // and the upper one's bottom is adjacent to it (size_regrouping.h, ObjectsStandingUnder: a table

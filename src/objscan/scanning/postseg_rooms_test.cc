@@ -41,7 +41,7 @@
 #include "objscan/recognition/component_matcher.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/recognizer.h"
-#include "objscan/scanning/size_regrouping.h"
+#include "objscan/scanning/report/size_regrouping.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
 #include "objscan/segmentation/segmentation_quality.h"

@@ -1,10 +1,10 @@
 // Report rules about an object's model and how sure recognition is: reopen_outgrown, model_label,
 // absorb_fragments, drop_small, drop_unsure.
-#include "objscan/scanning/completion_check.h"
-#include "objscan/scanning/fragment_absorption.h"
-#include "objscan/scanning/label_replacement.h"
+#include "objscan/scanning/report/completion_check.h"
+#include "objscan/scanning/report/fragment_absorption.h"
+#include "objscan/scanning/report/label_replacement.h"
 #include "objscan/scanning/report/report_rules.h"
-#include "objscan/scanning/wall_openings.h"
+#include "objscan/scanning/report/wall_openings.h"
 
 namespace objscan::scanning {
 

@@ -7,9 +7,9 @@
 
 #include "objscan/common/config.h"
 #include "objscan/recognition/category_extent.h"
-#include "objscan/scanning/completion_check.h"
-#include "objscan/scanning/fragment_absorption.h"
-#include "objscan/scanning/wall_openings.h"
+#include "objscan/scanning/report/completion_check.h"
+#include "objscan/scanning/report/fragment_absorption.h"
+#include "objscan/scanning/report/wall_openings.h"
 
 namespace objscan::scanning {
 

@@ -1,9 +1,9 @@
 // Report rules about an object's size: regroup_by_size, join_stacked, size_check, relabel.
 #include <algorithm>
 
-#include "objscan/scanning/label_replacement.h"
+#include "objscan/scanning/report/label_replacement.h"
 #include "objscan/scanning/report/report_rules.h"
-#include "objscan/scanning/size_regrouping.h"
+#include "objscan/scanning/report/size_regrouping.h"
 
 namespace objscan::scanning {
 namespace {

@@ -2,7 +2,7 @@
 // curtain_must_hang, join_window_pieces, curtains_over_windows (wall_openings.h).
 #include "objscan/mapping/planes.h"
 #include "objscan/scanning/report/report_rules.h"
-#include "objscan/scanning/wall_openings.h"
+#include "objscan/scanning/report/wall_openings.h"
 
 namespace objscan::scanning {
 

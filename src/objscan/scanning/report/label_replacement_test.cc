@@ -1,4 +1,4 @@
-#include "objscan/scanning/label_replacement.h"
+#include "objscan/scanning/report/label_replacement.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "objscan/scanning/wall_openings.h"
+#include "objscan/scanning/report/wall_openings.h"
 
 #include <algorithm>
 #include <cmath>

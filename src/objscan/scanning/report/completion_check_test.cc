@@ -1,4 +1,4 @@
-#include "objscan/scanning/completion_check.h"
+#include "objscan/scanning/report/completion_check.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "objscan/scanning/size_regrouping.h"
+#include "objscan/scanning/report/size_regrouping.h"
 
 #include <algorithm>
 #include <set>

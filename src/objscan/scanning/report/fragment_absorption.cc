@@ -1,4 +1,4 @@
-#include "objscan/scanning/fragment_absorption.h"
+#include "objscan/scanning/report/fragment_absorption.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "objscan/scanning/completion_check.h"
+#include "objscan/scanning/report/completion_check.h"
 
 #include "objscan/geometry/point_cloud.h"
 
