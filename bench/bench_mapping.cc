@@ -7,6 +7,7 @@
 
 #include "objscan/geometry/pose.h"
 #include "objscan/mapping/occupancy_map.h"
+#include "objscan/mapping/planes.h"
 #include "objscan/mapping/surface_map.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/render/depth_camera.h"
@@ -85,6 +86,55 @@ void BM_PresegmentFrame(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PresegmentFrame)->Unit(benchmark::kMillisecond);
+
+// The structure-residue tests the scanner runs on every component each step, on a 5 m x 4 m room
+// (floor and four walls) and a component of N points spread over furniture in its middle (the common
+// case: no plane holds it, so every plane is tried): the plane-noise test against its peer, the
+// per-point OnStructure test that runs beside it.
+mapping::StructureResult FourWallRoom() {
+  mapping::StructureResult s;
+  s.has_floor = true;
+  const double kHalfX = 2.5, kHalfY = 2.0;
+  const Eigen::Vector2d normals[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  const double offsets[4] = {-kHalfX, -kHalfX, -kHalfY, -kHalfY};
+  for (int k = 0; k < 4; ++k) {
+    mapping::WallPlane w;
+    w.normal = Eigen::Vector3d(normals[k].x(), normals[k].y(), 0.0);
+    w.offset_m = offsets[k];
+    w.z_max_m = 2.5;
+    w.span_min_m = -3.0;
+    w.span_max_m = 3.0;
+    s.walls.push_back(w);
+  }
+  return s;
+}
+void FurniturePoints(int n, std::vector<Eigen::Vector3f>* points, std::vector<Eigen::Vector3f>* normals) {
+  for (int i = 0; i < n; ++i) {
+    const float t = static_cast<float>(i) / static_cast<float>(n);
+    points->emplace_back(-0.5f + t, 0.3f * std::sin(40.0f * t), 0.1f + 0.8f * t);
+    normals->emplace_back(0.0f, 0.0f, 1.0f);
+  }
+}
+void BM_PlaneNoiseTest(benchmark::State& state) {
+  const mapping::StructureResult room = FourWallRoom();
+  std::vector<Eigen::Vector3f> points, normals;
+  FurniturePoints(static_cast<int>(state.range(0)), &points, &normals);
+  for (auto _ : state) benchmark::DoNotOptimize(room.IsPlaneNoise(points, normals, 0.08, 0.2, 0.8));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_PlaneNoiseTest)->Arg(20000)->Unit(benchmark::kMicrosecond);
+void BM_OnStructurePerPoint(benchmark::State& state) {
+  const mapping::StructureResult room = FourWallRoom();
+  std::vector<Eigen::Vector3f> points, normals;
+  FurniturePoints(static_cast<int>(state.range(0)), &points, &normals);
+  for (auto _ : state) {
+    std::size_t near = 0;
+    for (const auto& p : points) near += room.OnStructure(p.cast<double>(), 0.04);
+    benchmark::DoNotOptimize(near);
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_OnStructurePerPoint)->Arg(20000)->Unit(benchmark::kMicrosecond);
 
 #ifdef OBJSCAN_HAVE_OPEN3D
 // The bedroom frame as Open3D's input: an RGBD image (depth in metres, no colour), its intrinsics and
