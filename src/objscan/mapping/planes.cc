@@ -100,12 +100,10 @@ bool StructureResult::IsPlaneNoise(const std::vector<Eigen::Vector3f>& points, c
     return true;
   }
   for (const WallPlane& w : walls) {
-    const auto spans = [&](const Eigen::Vector3d& p) {
-      const double s = w.Along(p);
-      return s > w.span_min_m - band_m && s < w.span_max_m + band_m && p.z() > w.z_min_m - band_m &&
-             p.z() < w.z_max_m + band_m;
-    };
-    if (straddles([&](const Eigen::Vector3d& p) { return w.SignedDistance(p); }, w.normal, spans)) return true;
+    if (straddles([&](const Eigen::Vector3d& p) { return w.SignedDistance(p); }, w.normal,
+                  [&](const Eigen::Vector3d& p) { return w.Spans(p, band_m); })) {
+      return true;
+    }
   }
   return false;
 }

@@ -74,10 +74,12 @@ struct WallPlane {
   double SignedDistance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset_m; }
   // Position of p along the wall direction t = (-n.y, n.x, 0) (compare with the span).
   double Along(const Eigen::Vector3d& p) const { return -normal.y() * p.x() + normal.x() * p.y(); }
-  // Whether p lies within the wall's span and height (at any distance from its plane).
-  bool Spans(const Eigen::Vector3d& p) const {
+  // Whether p lies within the wall's span and height, each widened by margin_m (at any distance from
+  // its plane).
+  bool Spans(const Eigen::Vector3d& p, double margin_m = 0.0) const {
     const double s = Along(p);
-    return s >= span_min_m && s <= span_max_m && p.z() >= z_min_m && p.z() <= z_max_m;
+    return s >= span_min_m - margin_m && s <= span_max_m + margin_m && p.z() >= z_min_m - margin_m &&
+           p.z() <= z_max_m + margin_m;
   }
   // The point of the plane at z = 0 whose position along the wall is along_m (Along's inverse).
   Eigen::Vector3d PointAt(double along_m) const {
@@ -116,8 +118,8 @@ struct StructureResult {
   // The first wall (index into walls) in whose opening p lies, as InWallOpening; -1 for none.
   int WallOpeningIndex(const Eigen::Vector3d& p, double min_depth_m, double max_depth_m) const;
   // True when at least `fraction` of the points lie within band_m of one structure plane (the floor,
-  // or a wall within its span widened by band_m) on faces parallel to it (|n . plane normal| >=
-  // cos 30 deg), and at least min_side_share of those lie on each side of the plane. That is the
+  // or a wall within its span and height widened by band_m) on faces parallel to it
+  // (|n . plane normal| >= cos 30 deg), and at least min_side_share of those lie on each side of the plane. That is the
   // noise tail of the floor's or a wall's surface, beyond the tolerance that tagged the plane: it
   // straddles the plane, where the surface of anything standing on the floor or in front of a wall
   // (and of a door or a window in an opening behind it) lies on one side.

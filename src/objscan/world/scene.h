@@ -14,11 +14,11 @@
 namespace objscan::world {
 
 // Instance id 0 means "no object" everywhere (background, invalid pixel).
+constexpr std::int32_t kNoInstance = 0;
 
 // How far from the origin a scene may reach. A room or a house spans metres to hundreds of metres;
 // beyond this a file is corrupt, and the integer voxel grids of the map would overflow.
 constexpr double kMaxSceneCoordinate_m = 1e4;
-constexpr std::int32_t kNoInstance = 0;
 
 struct SceneObject {
   std::int32_t instance_id = kNoInstance;  // unique in the scene, > 0
