@@ -138,6 +138,26 @@ struct CompletedObject {
   std::vector<std::int32_t> labels;
 };
 
+// What the scanner keeps of one segment component (by its label) from step to step.
+struct ComponentProgress {
+  bool done = false;                // part of a completed object
+  std::uint64_t match_revision = 0;  // raised when it grew past scanner.rematch_growth_fraction
+  double matched_size = 0.0;         // its points at that revision
+  std::optional<std::uint64_t> noise_at_revision;  // found noise when matched at this revision
+  bool given_up = false;             // part of an object given up for good
+  int views = 0;                     // NBV views spent on objects holding it
+};
+
+// What the scanner keeps of one object of interest (by its id, its smallest component label).
+struct ObjectProgress {
+  bool given_up = false;
+  bool given_up_no_view = false;  // given up because no NBV candidate was valid
+  int views_spent = 0;            // NBV views
+  std::vector<double> objectness_history;  // O(r) before each of its NBV views
+  std::vector<geometry::Pose3> views;      // the camera poses of its NBV and coverage views
+  int coverage_attempts = 0;               // coverage views planned (coverage_views.h)
+};
+
 }  // namespace
 
 struct Scanner::State {
@@ -281,20 +301,20 @@ struct Scanner::State {
     segmentation::PostSegmenterInput input;
     std::set<std::int32_t> included;
     for (const auto& c : graph.components()) {
-      if (done_labels.count(c.label)) continue;
+      ComponentProgress& progress = components_seen[c.label];
+      if (progress.done) continue;
       if (IsStructureResidue(c)) continue;
-      auto& rev = match_revision[c.label];
       const double n = static_cast<double>(c.points.size());
-      if (rev.first == 0 || std::abs(n - rev.second) > config.scanner.rematch_growth_fraction * rev.second) {
-        ++rev.first;
-        rev.second = n;
+      if (progress.match_revision == 0 ||
+          std::abs(n - progress.matched_size) > config.scanner.rematch_growth_fraction * progress.matched_size) {
+        ++progress.match_revision;
+        progress.matched_size = n;
       }
-      auto noise = noise_labels.find(c.label);
-      if (noise != noise_labels.end()) {
-        if (noise->second == rev.first) continue;
-        noise_labels.erase(noise);
+      if (progress.noise_at_revision) {
+        if (*progress.noise_at_revision == progress.match_revision) continue;
+        progress.noise_at_revision.reset();
       }
-      input.components.push_back({c.label, rev.first, c.points.size()});
+      input.components.push_back({c.label, progress.match_revision, c.points.size()});
       included.insert(c.label);
     }
     for (const auto& [a, b] : graph.Edges()) {
@@ -319,13 +339,16 @@ struct Scanner::State {
         done.model = *r.best_model();
         done.objectness = r.objectness;
         done.labels = r.component_ids;
-        for (auto l : r.component_ids) done_labels.insert(l);
+        for (auto l : r.component_ids) components_seen[l].done = true;
         completed.push_back(done);
         if (current_ooi == id) current_ooi = -1;
         continue;
       }
       if (r.status == segmentation::ObjectStatus::kNoise && config.scanner.remove_noise) {
-        for (auto l : r.component_ids) noise_labels[l] = match_revision[l].first;
+        for (auto l : r.component_ids) {
+          ComponentProgress& progress = components_seen[l];
+          progress.noise_at_revision = progress.match_revision;
+        }
         continue;
       }
       objects.push_back(static_cast<int>(k));
@@ -398,18 +421,33 @@ struct Scanner::State {
     return static_cast<double>(near) >= fraction * static_cast<double>(c.points.size());
   }
 
+  // Objects given up for want of a valid view get another chance (the map has changed since).
+  void ReopenObjectsWithoutAView() {
+    for (auto& [id, progress] : objects_of_interest) {
+      if (!progress.given_up_no_view) continue;
+      progress.given_up = false;
+      progress.given_up_no_view = false;
+    }
+  }
+  bool AnyObjectWithoutAView() const {
+    return std::any_of(objects_of_interest.begin(), objects_of_interest.end(),
+                       [](const auto& entry) { return entry.second.given_up_no_view; });
+  }
+
   // The components of an object given up for good (stalled, out of views): objects made mostly of them
   // later are given up too (scanner.given_up_surface_share).
   void GiveUpSurface(const segmentation::PostSegmentedObject& r) {
     if (config.scanner.given_up_surface_share <= 0.0) return;
-    given_up_labels.insert(r.component_ids.begin(), r.component_ids.end());
+    for (auto l : r.component_ids) components_seen[l].given_up = true;
+    any_component_given_up = true;
   }
   bool MostlyGivenUp(const segmentation::PostSegmentedObject& r, std::size_t num_points) const {
     const double share = config.scanner.given_up_surface_share;
-    if (share <= 0.0 || given_up_labels.empty() || num_points == 0) return false;
+    if (share <= 0.0 || !any_component_given_up || num_points == 0) return false;
     std::size_t spent = 0;
     for (auto l : r.component_ids) {
-      if (!given_up_labels.count(l)) continue;
+      const auto progress = components_seen.find(l);
+      if (progress == components_seen.end() || !progress->second.given_up) continue;
       if (const segmentation::Component* c = segmenter_graph().Find(l)) spent += c->points.size();
     }
     return static_cast<double>(spent) >= share * static_cast<double>(num_points);
@@ -456,23 +494,25 @@ struct Scanner::State {
       for (int k : objects) {
         const auto& r = post.objects[k];
         const int id = r.component_ids.front();
-        if (given_up.count(id)) continue;
+        ObjectProgress& progress = objects_of_interest[id];
+        if (progress.given_up) continue;
         geometry::Aabb3 bounds;
         double area = 0.0;
         std::size_t n = 0;
         ObjectGeometry(r, nullptr, &bounds, &area, &n);
         if (static_cast<int>(n) < config.scanner.min_object_elements) continue;
         if (MostlyGivenUp(r, n)) {
-          given_up.insert(id);
+          progress.given_up = true;
           if (current_ooi == id) current_ooi = -1;
           continue;
         }
         const int stall = config.scanner.stall_views;
-        const auto history = objectness_history.find(id);
-        if (stall > 0 && history != objectness_history.end() && views_spent[id] >= stall &&
-            static_cast<int>(history->second.size()) > views_spent[id] - stall &&
-            r.objectness - history->second[views_spent[id] - stall] < config.scanner.stall_min_gain) {
-          given_up.insert(id);
+        const std::vector<double>& history = progress.objectness_history;
+        if (stall > 0 && progress.views_spent >= stall &&
+            static_cast<int>(history.size()) > progress.views_spent - stall &&
+            r.objectness - history[static_cast<std::size_t>(progress.views_spent - stall)] <
+                config.scanner.stall_min_gain) {
+          progress.given_up = true;
           GiveUpSurface(r);
           if (current_ooi == id) current_ooi = -1;
           step->notes.push_back("object " + std::to_string(id) + ": objectness stalled at " +
@@ -487,10 +527,10 @@ struct Scanner::State {
         o.area_m2 = area;
         // Views spent on any of its components count: post-segmentation regroups components from step to
         // step, and a regrouped object (new id) must not restart its view budget.
-        int spent = views_spent[id];
+        int spent = progress.views_spent;
         for (auto l : r.component_ids) {
-          auto it = label_views.find(l);
-          if (it != label_views.end()) spent = std::max(spent, it->second);
+          const auto component = components_seen.find(l);
+          if (component != components_seen.end()) spent = std::max(spent, component->second.views);
         }
         o.views_spent = spent;
         candidates.push_back(o);
@@ -501,7 +541,7 @@ struct Scanner::State {
       const planning::NboResult nbo = planning::SelectNextBestObject(candidates, view, current_ooi, config.nbo);
       Charge(step, &StageTimes::nbo, w.ElapsedMs());
       for (int id : nbo.budget_spent_ids) {
-        given_up.insert(id);
+        objects_of_interest[id].given_up = true;
         for (std::size_t i = 0; i < candidates.size(); ++i) {
           if (candidates[i].id == id) GiveUpSurface(post.objects[candidate_object[i]]);
         }
@@ -544,7 +584,7 @@ struct Scanner::State {
       input.has_camera_position = true;
       input.camera_position_world = platform.T_world_camera().translation();
       const double radius = 0.5 * bounds.Diagonal();
-      std::vector<geometry::Pose3> earlier = views_of[nbo.chosen_id];
+      std::vector<geometry::Pose3> earlier = objects_of_interest[nbo.chosen_id].views;
       earlier.push_back(platform.T_world_camera());
       MapViewValidator validator(occupancy, platform, navigator, std::max(config.scanner.line_of_sight_skip_m, radius),
                                  earlier, config.scanner.min_view_separation_m, config.scanner.min_view_separation_deg);
@@ -566,9 +606,10 @@ struct Scanner::State {
         note.resize(note.size() - 2);
         step->notes.push_back(note + ")");
       }
+      ObjectProgress& progress = objects_of_interest[id];
       if (!moved) {
-        given_up.insert(id);
-        given_up_no_view.insert(id);
+        progress.given_up = true;
+        progress.given_up_no_view = true;
         step->nbv_candidates.clear();
         if (current_ooi == id) current_ooi = -1;
         continue;
@@ -577,12 +618,11 @@ struct Scanner::State {
       if (id != current_ooi) ++record.nbo_count;
       current_ooi = id;
       step->ooi = id;
-      auto& history = objectness_history[id];
-      history.resize(static_cast<std::size_t>(views_spent[id]) + 1, 0.0);
-      history[static_cast<std::size_t>(views_spent[id])] = gamma.objectness;
-      ++views_spent[id];
-      for (auto l : gamma.component_ids) ++label_views[l];
-      views_of[id].push_back(platform.T_world_camera());
+      progress.objectness_history.resize(static_cast<std::size_t>(progress.views_spent) + 1, 0.0);
+      progress.objectness_history[static_cast<std::size_t>(progress.views_spent)] = gamma.objectness;
+      ++progress.views_spent;
+      for (auto l : gamma.component_ids) ++components_seen[l].views;
+      progress.views.push_back(platform.T_world_camera());
       ++record.nbv_views;
       return true;
     }
@@ -612,7 +652,7 @@ struct Scanner::State {
     std::vector<Target> targets;
     const auto consider = [&](int id, const segmentation::ModelMatch* m, double objectness) {
       if (m == nullptr || EntryOf(*m) == nullptr) return;
-      if (objectness < options.min_objectness || coverage_attempts[id] >= options.max_views_per_object) return;
+      if (objectness < options.min_objectness || objects_of_interest[id].coverage_attempts >= options.max_views_per_object) return;
       targets.push_back({id, m, m->T_world_model.translation()});
     };
     for (const auto& c : completed) consider(c.id, &c.model, c.objectness);
@@ -629,7 +669,7 @@ struct Scanner::State {
     });
     const std::vector<Eigen::Vector3f>& map_points = Occluders();
     for (const Target& t : targets) {
-      ++coverage_attempts[t.id];
+      ++objects_of_interest[t.id].coverage_attempts;
       Stopwatch w;
       const std::vector<Eigen::Vector3f> model_points = ModelSurfaceAboveFloor(
           PlacedModelPoints(*t.model), structure.has_floor, structure.floor_height_m, options.floor_clearance_m);
@@ -660,7 +700,7 @@ struct Scanner::State {
         }
         input.aim_points_world = &aim;
       }
-      std::vector<geometry::Pose3> earlier = views_of[t.id];
+      std::vector<geometry::Pose3> earlier = objects_of_interest[t.id].views;
       earlier.push_back(platform.T_world_camera());
       MapViewValidator validator(occupancy, platform, navigator,
                                  std::max(config.scanner.line_of_sight_skip_m, 0.5 * box.Diagonal()), earlier,
@@ -682,7 +722,7 @@ struct Scanner::State {
       for (const auto& c : result.candidates) {
         step->nbv_candidates.push_back({c.T_world_camera, planning::ToString(c.validity), c.gain.gain});
       }
-      views_of[t.id].push_back(platform.T_world_camera());
+      objects_of_interest[t.id].views.push_back(platform.T_world_camera());
       ++record.coverage_views;
       return true;
     }
@@ -885,7 +925,8 @@ struct Scanner::State {
         r.model_entry = best->entry_id;
       }
       o.objectness = p.objectness;
-      o.given_up = given_up.count(o.id) > 0;
+      const auto progress = objects_of_interest.find(o.id);
+      o.given_up = progress != objects_of_interest.end() && progress->second.given_up;
       o.labels = p.component_ids;
       r.full_matches = &p.full_model_matches;
       objects->Add(std::move(r));
@@ -957,19 +998,11 @@ struct Scanner::State {
   segmentation::PostSegmentation post;
   std::vector<int> objects;  // partial objects of `post` (indices)
   std::vector<CompletedObject> completed;
-  std::set<std::int32_t> done_labels;
-  std::map<std::int32_t, std::uint64_t> noise_labels;  // label -> match revision when found noise
-  std::map<std::int32_t, std::pair<std::uint64_t, double>> match_revision;  // label -> (revision, size)
-  std::set<int> given_up;
-  std::set<std::int32_t> given_up_labels;  // components of objects given up for good
-  std::set<int> given_up_no_view;  // given up because no NBV candidate was valid (subset of given_up)
+  std::map<std::int32_t, ComponentProgress> components_seen;  // by component label
+  std::map<int, ObjectProgress> objects_of_interest;          // by object id
+  bool any_component_given_up = false;
   std::vector<Eigen::Vector2d> stuck_lookarounds;  // where the robot looked around on getting stuck
   int views_at_reopen = -1;  // record.views when objects without a valid view were last given another chance
-  std::map<int, int> views_spent;
-  std::map<std::int32_t, int> label_views;  // NBV views spent on objects holding this component
-  std::map<int, std::vector<double>> objectness_history;  // O(r) of an OOI before each of its views
-  std::map<int, std::vector<geometry::Pose3>> views_of;  // NBV camera poses per object of interest
-  std::map<int, int> coverage_attempts;  // coverage views planned per object (coverage_views.h)
   std::vector<Eigen::Vector3d> visited_goals;
   std::vector<Eigen::Vector3f> occluders;
   bool occluders_stale = true;
@@ -1052,17 +1085,15 @@ bool Scanner::Step() {
         step.notes.push_back("no reachable goal: looking around before giving up");
         s.LookAroundInPlace(&step);
         // Objects given up for want of a valid view get another chance with the better map.
-        for (int id : s.given_up_no_view) s.given_up.erase(id);
-        s.given_up_no_view.clear();
+        s.ReopenObjectsWithoutAView();
         s.views_at_reopen = rec.views;
         t = Termination::kRunning;
-      } else if (t == Termination::kStuck && object_guidance && !s.given_up_no_view.empty() &&
+      } else if (t == Termination::kStuck && object_guidance && s.AnyObjectWithoutAView() &&
                  rec.views > s.views_at_reopen) {
         // Unreachable frontiers must not end the run while an object may have a view: those given up
         // for want of one get another chance whenever views were taken since the last one.
         step.notes.push_back("no reachable goal: objects without a valid view get another chance");
-        for (int id : s.given_up_no_view) s.given_up.erase(id);
-        s.given_up_no_view.clear();
+        s.ReopenObjectsWithoutAView();
         s.views_at_reopen = rec.views;
         t = Termination::kRunning;
       }
@@ -1105,7 +1136,10 @@ const RunRecord& Scanner::Run(const ProgressCallback& progress) {
   s.record.objects = s.ReportObjects(s.config.report);
   // Objects left unfinished because none of their views could be reached.
   for (const ObjectRecord& o : s.record.objects) {
-    if (!o.complete && s.given_up_no_view.count(o.id)) s.record.unreachable.objects.push_back(o.id);
+    const auto progress = s.objects_of_interest.find(o.id);
+    if (!o.complete && progress != s.objects_of_interest.end() && progress->second.given_up_no_view) {
+      s.record.unreachable.objects.push_back(o.id);
+    }
   }
   // At the step budget the last exploration step's frontiers say nothing about how the run ended.
   if (s.record.terminated == Termination::kMaxSteps) {
