@@ -23,6 +23,7 @@
 #include "objscan/scanning/coverage_views.h"
 #include "objscan/scanning/report/report_pipeline.h"
 #include "objscan/scanning/report/report_rules.h"
+#include "objscan/scanning/scan_step.h"
 #include "objscan/segmentation/incremental_segmenter.h"
 #include "objscan/segmentation/post_segmenter.h"
 
@@ -182,7 +183,13 @@ struct Scanner::State {
     const platform::CameraIntrinsics k = platform.intrinsics();
     frustum =
         planning::CameraFrustum::FromPinhole(k.width_px, k.height_px, k.fx_px, k.fy_px, k.min_range_m, k.max_range_m);
+    ChooseStepKinds();
   }
+
+  class ObjectScanStep;
+  class FrontierExplorationStep;
+  class CoverageViewStep;
+  void ChooseStepKinds();
 
   // --- sensing ---------------------------------------------------------------------------------
   // A frame from where the camera is now, fused into the maps.
@@ -1010,7 +1017,81 @@ struct Scanner::State {
   int current_ooi = -1;
   bool finished = false;  // Run() has reported the objects
   Stopwatch wall;
+  bool analyze_objects = true;  // segment and recognise every step (object guidance)
+  std::vector<std::unique_ptr<ScanStep>> step_kinds;  // tried in this order each step
 };
+
+// The paper's step: the next best object and a next best view of it.
+class Scanner::State::ObjectScanStep final : public ScanStep {
+ public:
+  explicit ObjectScanStep(State& s) : s_(s) {}
+  const char* name() const override { return "object"; }
+  StepOutcome Take(StepRecord* step) override {
+    return s_.ScanObjectStep(step) ? StepOutcome::Taken() : StepOutcome::NotTaken();
+  }
+
+ private:
+  State& s_;
+};
+
+// Frontier exploration. Before it lets the run end it looks around once wherever the robot got stuck
+// (the views show it the space its earlier, targeted views left unknown), and gives objects given up
+// for want of a valid view another chance whenever views were taken since the last one.
+class Scanner::State::FrontierExplorationStep final : public ScanStep {
+ public:
+  explicit FrontierExplorationStep(State& s) : s_(s) {}
+  const char* name() const override { return "exploration"; }
+  StepOutcome Take(StepRecord* step) override {
+    const Termination t = s_.ExploreStep(step);
+    if (t == Termination::kRunning) return StepOutcome::Taken();
+    const Eigen::Vector2d here = s_.platform.base().xy_m;
+    const bool looked_here = std::any_of(s_.stuck_lookarounds.begin(), s_.stuck_lookarounds.end(),
+                                         [&](const Eigen::Vector2d& p) { return (p - here).norm() < 0.5; });
+    if (t == Termination::kStuck && !looked_here) {
+      s_.stuck_lookarounds.push_back(here);
+      step->notes.push_back("no reachable goal: looking around before giving up");
+      s_.LookAroundInPlace(step);
+      s_.ReopenObjectsWithoutAView();  // with the better map
+      s_.views_at_reopen = s_.record.views;
+      return StepOutcome::Taken();
+    }
+    if (t == Termination::kStuck && s_.AnyObjectWithoutAView() && s_.record.views > s_.views_at_reopen) {
+      // Unreachable frontiers must not end the run while an object may have a view.
+      step->notes.push_back("no reachable goal: objects without a valid view get another chance");
+      s_.ReopenObjectsWithoutAView();
+      s_.views_at_reopen = s_.record.views;
+      return StepOutcome::Taken();
+    }
+    return StepOutcome::NotTaken(t);
+  }
+
+ private:
+  State& s_;
+};
+
+// Nothing else left: complete the scans of the reported objects (coverage_views.h).
+class Scanner::State::CoverageViewStep final : public ScanStep {
+ public:
+  explicit CoverageViewStep(State& s) : s_(s) {}
+  const char* name() const override { return "coverage"; }
+  StepOutcome Take(StepRecord* step) override {
+    return s_.CoverageStep(step) ? StepOutcome::Taken() : StepOutcome::NotTaken();
+  }
+
+ private:
+  State& s_;
+};
+
+// The guidance: which kinds of step, in which order, and whether objects are analysed each step.
+// "object" is the paper's loop (frontiers when no object is left) with coverage views at the end;
+// "frontier" explores only.
+void Scanner::State::ChooseStepKinds() {
+  analyze_objects = config.scanner.guidance == "object";
+  step_kinds.clear();
+  if (analyze_objects) step_kinds.push_back(std::make_unique<ObjectScanStep>(*this));
+  step_kinds.push_back(std::make_unique<FrontierExplorationStep>(*this));
+  if (analyze_objects) step_kinds.push_back(std::make_unique<CoverageViewStep>(*this));
+}
 
 Scanner::Scanner(const SystemConfig& config, platform::Platform* platform, const recognition::ModelDatabase& database,
                  std::uint64_t seed) {
@@ -1067,38 +1148,23 @@ bool Scanner::Step() {
     s.LookAroundInPlace(&step);
   } else {
     s.RefreshNavigation();
-    const bool object_guidance = s.config.scanner.guidance == "object";
-    if (object_guidance) {
+    if (s.analyze_objects) {
       s.Analyze(&step);
     } else {
       s.UpdateStructure();
     }
-    if (!object_guidance || !s.ScanObjectStep(&step)) {
-      Termination t = s.ExploreStep(&step);
-      // Before giving up, look around once more wherever the robot got stuck: the views show it the
-      // space around it that its earlier, targeted views left unknown.
-      const Eigen::Vector2d here = s.platform.base().xy_m;
-      const bool looked_here = std::any_of(s.stuck_lookarounds.begin(), s.stuck_lookarounds.end(),
-                                           [&](const Eigen::Vector2d& p) { return (p - here).norm() < 0.5; });
-      if (t == Termination::kStuck && !looked_here) {
-        s.stuck_lookarounds.push_back(here);
-        step.notes.push_back("no reachable goal: looking around before giving up");
-        s.LookAroundInPlace(&step);
-        // Objects given up for want of a valid view get another chance with the better map.
-        s.ReopenObjectsWithoutAView();
-        s.views_at_reopen = rec.views;
-        t = Termination::kRunning;
-      } else if (t == Termination::kStuck && object_guidance && s.AnyObjectWithoutAView() &&
-                 rec.views > s.views_at_reopen) {
-        // Unreachable frontiers must not end the run while an object may have a view: those given up
-        // for want of one get another chance whenever views were taken since the last one.
-        step.notes.push_back("no reachable goal: objects without a valid view get another chance");
-        s.ReopenObjectsWithoutAView();
-        s.views_at_reopen = rec.views;
-        t = Termination::kRunning;
+    bool taken = false;
+    std::optional<Termination> end;
+    for (const std::unique_ptr<ScanStep>& kind : s.step_kinds) {
+      const StepOutcome outcome = kind->Take(&step);
+      if (outcome.taken) {
+        taken = true;
+        break;
       }
-      // Nothing else left: complete the scans of the reported objects.
-      if (t != Termination::kRunning && object_guidance && s.CoverageStep(&step)) t = Termination::kRunning;
+      if (outcome.end) end = outcome.end;
+    }
+    if (!taken) {
+      Termination t = end.value_or(Termination::kDone);
       if (t == Termination::kStuck && s.RobotCanMove()) {
         t = Termination::kDone;
         char note[96];
@@ -1106,10 +1172,8 @@ bool Scanner::Step() {
                       rec.unreachable.frontiers.size(), rec.unreachable.frontier_area_m2);
         step.notes.push_back(note);
       }
-      if (t != Termination::kRunning) {
-        rec.terminated = t;
-        step.notes.push_back(std::string("terminated: ") + TerminationName(t));
-      }
+      rec.terminated = t;
+      step.notes.push_back(std::string("terminated: ") + TerminationName(t));
     }
   }
   rec.travel_m = s.platform.travel().distance_m;
