@@ -25,6 +25,7 @@
 #include "objscan/io/scene_spec.h"
 #include "objscan/scanning/scene_limits.h"
 #include "objscan/scanning/system_config.h"
+#include "bag_link.h"
 #include "remote_platform.h"
 #include "ros_messages.h"
 #include "run_scan.h"
@@ -44,6 +45,7 @@ struct NodeArgs {
   double connect_timeout_s = 30.0;
   double request_timeout_s = 10.0;
   double frame_timeout_s = 10.0;
+  std::string bag;  // play a recorded scan back instead of driving a robot
 };
 
 // The topics, relative to the node's namespace (remap them as usual: name:=/other).
@@ -235,6 +237,30 @@ int RunNode(const NodeArgs& args) {
   }
   const app::RunDatabase database = app::LoadRunDatabase(args.db, args.scene, config, args.quiet);
 
+  app::ScanRunInputs in;
+  in.config = &config;
+  in.database = &database;
+  in.scene = scene ? &*scene : nullptr;
+  in.seed = args.seed;
+  in.out = args.out;
+  in.quiet = args.quiet;
+  in.save_frames = args.save_frames;
+  in.program = "objscan_ros";
+
+  if (!args.bag.empty()) {
+    // Played back from a bag: no robot, no master, nothing shown.
+    BagLink link(args.bag, args.world_frame, scene.has_value());
+    RemotePlatform robot(&link, config.robot);
+    in.scene_spec = args.scene.empty() ? robot.world_name() : args.scene;
+    const int code = app::ScanAndWrite(in, &robot);
+    if (!robot.failure().empty()) {
+      std::fprintf(stderr, "objscan_ros: error: the bag's run and this one part, the run is written as far as it got (%s): %s\n",
+                   args.out.c_str(), robot.failure().c_str());
+      return 3;
+    }
+    return code;
+  }
+
   // Without a master roscpp would wait for one for ever.
   if (!ros::master::check()) {
     throw LinkError("no ROS master at " + ros::master::getURI() + " (start roscore, or set ROS_MASTER_URI)");
@@ -243,16 +269,7 @@ int RunNode(const NodeArgs& args) {
   RemotePlatform robot(&link, config.robot);
   ScanDisplay display(args.world_frame, database.database);
 
-  app::ScanRunInputs in;
-  in.config = &config;
-  in.database = &database;
-  in.scene = scene ? &*scene : nullptr;
   in.scene_spec = args.scene.empty() ? robot.world_name() : args.scene;
-  in.seed = args.seed;
-  in.out = args.out;
-  in.quiet = args.quiet;
-  in.save_frames = args.save_frames;
-  in.program = "objscan_ros";
   in.on_step = [&display](const scanning::Scanner& s, const scanning::RunRecord& r, bool finished) {
     display.Show(s, r, finished);
   };
@@ -285,6 +302,8 @@ int main(int argc, char** argv) {
   app.add_option("--connect-timeout-s", args.connect_timeout_s, "seconds to wait for the robot's topics")->capture_default_str();
   app.add_option("--request-timeout-s", args.request_timeout_s, "seconds to wait for a response (a move included)")->capture_default_str();
   app.add_option("--frame-timeout-s", args.frame_timeout_s, "seconds to wait for a depth frame")->capture_default_str();
+  app.add_option("--bag", args.bag, "play back a scan recorded with rosbag (docs/ros.md) instead of driving a robot: "
+                 "give the seed, config and database it was recorded with; no ROS master needed");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

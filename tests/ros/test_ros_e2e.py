@@ -3,7 +3,8 @@
 simulator as a robot (objscan_sim_ros), objscan_ros scanning a small procedural room through it, and
 rosbag recording the robot's topics. The run over ROS must be the in-process run (`objscan run`, the
 same scene, seed and config) step for step (scripts/compare_runs.py --exact: same views, labels,
-metrics and files), and the bag must open with the robot's topics and one depth image per frame.
+metrics and files), and the bag must open with the robot's topics and one depth image per frame and
+play back into the same run (`objscan_ros --bag`).
 Then a robot that falls silent mid-scan must end objscan_ros with one line, exit code 3 and the
 scan so far written.
 
@@ -168,6 +169,41 @@ def main():
             read += 1
         if read != frames:
             fail(f"read {read} depth images back, expected {frames}")
+    # Played back into the reconstruction: objscan_ros --bag answers the scan from the bag alone (the
+    # master is gone) and must make the run over ROS again, file for file.
+    replay_out = os.path.join(work, "replay")
+    replay = subprocess.run([node, "--bag", bag_path, "--scene", SCENE, "--db", db, "--seed", SEED, "--out", replay_out,
+                             "--quiet"] + sets, env=env, capture_output=True, text=True, timeout=600)
+    print(f"objscan_ros --bag: exit {replay.returncode}\n{replay.stderr}", flush=True)
+    if replay.returncode != 0:
+        fail("objscan_ros --bag failed")
+    compare = subprocess.run([sys.executable, os.path.join(source, "scripts", "compare_runs.py"), "--exact", ros_out,
+                              replay_out], capture_output=True, text=True)
+    print(compare.stdout, flush=True)
+    if compare.returncode != 0:
+        fail(f"the run played back from the bag differs from the run over ROS (kept in {work})")
+    # A run that asks otherwise (another robot body: another map request) stops at the first request
+    # that differs: exit code 3, one line, the scan so far written.
+    parted_out = os.path.join(work, "parted")
+    parted = subprocess.run([node, "--bag", bag_path, "--scene", SCENE, "--db", db, "--seed", SEED, "--out", parted_out,
+                             "--quiet", "--set", "robot.base_radius_m=0.3"] + sets, env=env, capture_output=True,
+                            text=True, timeout=600)
+    print(f"objscan_ros --bag, another robot body: exit {parted.returncode}\n{parted.stderr}", flush=True)
+    lines = [l for l in parted.stderr.splitlines() if l.strip()]
+    if parted.returncode != 3 or len(lines) != 1 or "differs from the recorded one" not in lines[0]:
+        fail("a run that parts from the bag's did not end with exit code 3 and one line naming the request")
+    if not os.path.exists(os.path.join(parted_out, "run.json")):
+        fail("the run before it parted from the bag's was not written")
+    # A file that is not a bag: one line naming it, exit code 2, nothing written.
+    not_bag = os.path.join(work, "not.bag")
+    with open(not_bag, "w") as f:
+        f.write("#ROSBAG V2.0\n\x05")
+    broken = subprocess.run([node, "--bag", not_bag, "--scene", SCENE, "--db", db, "--out", os.path.join(work, "nb"),
+                             "--quiet"], env=env, capture_output=True, text=True, timeout=120)
+    lines = [l for l in broken.stderr.splitlines() if l.strip()]
+    if broken.returncode != 2 or len(lines) != 1 or "not.bag" not in lines[0] \
+            or os.path.exists(os.path.join(work, "nb")):
+        fail(f"a damaged bag did not give one line and exit code 2 without output: {broken.returncode} {broken.stderr}")
     print(f"ros.e2e: passed in {time.time() - started:.1f} s ({frames} frames, {len(run['steps'])} steps)", flush=True)
     shutil.rmtree(work, ignore_errors=True)
 
