@@ -247,18 +247,21 @@ int RunNode(const NodeArgs& args) {
   in.save_frames = args.save_frames;
   in.program = "objscan_ros";
 
+  // The scan over `robot`; a failed link keeps what was scanned and ends with exit code 3.
+  auto scan = [&](RemotePlatform& robot, const char* failed) {
+    in.scene_spec = args.scene.empty() ? robot.world_name() : args.scene;
+    const int code = app::ScanAndWrite(in, &robot);
+    if (robot.failure().empty()) return code;
+    std::fprintf(stderr, "objscan_ros: error: %s, the run is written as far as it got (%s): %s\n", failed,
+                 args.out.c_str(), robot.failure().c_str());
+    return 3;
+  };
+
   if (!args.bag.empty()) {
     // Played back from a bag: no robot, no master, nothing shown.
     BagLink link(args.bag, args.world_frame, scene.has_value());
     RemotePlatform robot(&link, config.robot);
-    in.scene_spec = args.scene.empty() ? robot.world_name() : args.scene;
-    const int code = app::ScanAndWrite(in, &robot);
-    if (!robot.failure().empty()) {
-      std::fprintf(stderr, "objscan_ros: error: the bag's run and this one part, the run is written as far as it got (%s): %s\n",
-                   args.out.c_str(), robot.failure().c_str());
-      return 3;
-    }
-    return code;
+    return scan(robot, "the bag's run and this one part");
   }
 
   // Without a master roscpp would wait for one for ever.
@@ -269,17 +272,10 @@ int RunNode(const NodeArgs& args) {
   RemotePlatform robot(&link, config.robot);
   ScanDisplay display(args.world_frame, database.database);
 
-  in.scene_spec = args.scene.empty() ? robot.world_name() : args.scene;
   in.on_step = [&display](const scanning::Scanner& s, const scanning::RunRecord& r, bool finished) {
     display.Show(s, r, finished);
   };
-  const int code = app::ScanAndWrite(in, &robot);
-  if (!robot.failure().empty()) {
-    std::fprintf(stderr, "objscan_ros: error: the robot link failed, the run is written as far as it got (%s): %s\n",
-                 args.out.c_str(), robot.failure().c_str());
-    return 3;
-  }
-  return code;
+  return scan(robot, "the robot link failed");
 }
 
 }  // namespace
