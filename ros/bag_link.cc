@@ -68,21 +68,21 @@ BagLink::BagLink(const std::string& bag_path, const std::string& world_frame, bo
   std::vector<std::pair<std::uint64_t, sensor_msgs::ImageConstPtr>> depths;  // (capture id, image)
   ReadBag(bag_path, [&](const BagMessage& m) {
     const std::string& topic = m.topic;
-    if (IsTopic(topic, "objscan/robot_request") && m.type == "std_msgs/String") {
+    if (IsTopic(topic, kRequestTopic) && m.type == "std_msgs/String") {
       const RobotRequest request = DecodeRequest(Deserialize<std_msgs::String>(m, bag_path)->data);
       r.requests[request.id] = EncodeRequest(request);
       if (request.kind == RequestKind::kCapture) waiting_captures.push_back(request.id);
-    } else if (IsTopic(topic, "objscan/robot_response") && m.type == "std_msgs/String") {
+    } else if (IsTopic(topic, kResponseTopic) && m.type == "std_msgs/String") {
       RobotResponse response = DecodeResponse(Deserialize<std_msgs::String>(m, bag_path)->data);
       r.responses[response.id] = std::move(response);
-    } else if (IsTopic(topic, "camera/depth/image") && m.type == "sensor_msgs/Image") {
+    } else if (IsTopic(topic, kDepthTopic) && m.type == "sensor_msgs/Image") {
       if (waiting_captures.empty()) return;  // a camera streams: frames nobody asked for
       depths.emplace_back(waiting_captures.front(), Deserialize<sensor_msgs::Image>(m, bag_path));
       waiting_captures.erase(waiting_captures.begin());
-    } else if (IsTopic(topic, "camera/depth/camera_info") && m.type == "sensor_msgs/CameraInfo") {
+    } else if (IsTopic(topic, kInfoTopic) && m.type == "sensor_msgs/CameraInfo") {
       const auto msg = Deserialize<sensor_msgs::CameraInfo>(m, bag_path);
       infos[msg->header.stamp] = msg;
-    } else if (IsTopic(topic, "camera/depth/gt_instance") && m.type == "sensor_msgs/Image") {
+    } else if (IsTopic(topic, kInstanceTopic) && m.type == "sensor_msgs/Image") {
       const auto msg = Deserialize<sensor_msgs::Image>(m, bag_path);
       instances[msg->header.stamp] = msg;
     } else if ((topic == "/tf" || topic == "/tf_static") && m.type == "tf2_msgs/TFMessage") {
@@ -106,9 +106,6 @@ BagLink::BagLink(const std::string& bag_path, const std::string& world_frame, bo
 }
 
 BagLink::~BagLink() = default;
-
-std::size_t BagLink::num_requests() const { return recording_->requests.size(); }
-std::size_t BagLink::num_frames() const { return recording_->frames.size(); }
 
 RobotResponse BagLink::Call(const RobotRequest& request) {
   const Recording& r = *recording_;
@@ -150,15 +147,9 @@ platform::DepthFrame BagLink::Capture(std::uint64_t request_id) {
                     std::to_string(request_id));
   }
   const Recording::Frame& f = it->second;
-  platform::DepthFrame frame;
-  const std::string what = bag_path_ + " " + "camera/depth/image";
-  frame.depth_m = DepthMetresFromImage(FromImageMsg(*f.depth), what);
-  frame.intrinsics = IntrinsicsFromCameraInfo(FromCameraInfoMsg(*f.info), r.hello_intrinsics.min_range_m,
-                                              r.hello_intrinsics.max_range_m, bag_path_ + " camera/depth/camera_info");
-  if (frame.depth_m.size() != static_cast<std::size_t>(frame.intrinsics.NumPixels())) {
-    throw InputError(what + ": depth image and camera info differ in size");
-  }
-  if (ground_truth_) frame.gt_instance = InstancesFromImage(FromImageMsg(*f.instance), bag_path_ + " camera/depth/gt_instance");
+  platform::DepthFrame frame = FrameFromMsgs(
+      *f.depth, *f.info, ground_truth_ ? f.instance.get() : nullptr, r.hello_intrinsics,
+      {bag_path_ + " " + kDepthTopic, bag_path_ + " " + kInfoTopic, bag_path_ + " " + kInstanceTopic});
   try {
     const geometry_msgs::TransformStamped t =
         r.tf.lookupTransform(world_frame_, f.depth->header.frame_id, f.depth->header.stamp);

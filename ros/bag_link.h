@@ -7,7 +7,6 @@
 // whole run come back without a robot or a ROS master. A run that asks otherwise than the recorded
 // one (another seed or config) stops at the first request that differs, with one line naming it.
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 
@@ -25,10 +24,6 @@ class BagLink : public RobotLink {
 
   RobotResponse Call(const RobotRequest& request) override;
   platform::DepthFrame Capture(std::uint64_t request_id) override;
-
-  // What the bag holds: requests, responses and depth frames answered to capture requests.
-  std::size_t num_requests() const;
-  std::size_t num_frames() const;
 
  private:
   struct Recording;

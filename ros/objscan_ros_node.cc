@@ -48,12 +48,7 @@ struct NodeArgs {
   std::string bag;  // play a recorded scan back instead of driving a robot
 };
 
-// The topics, relative to the node's namespace (remap them as usual: name:=/other).
-constexpr char kRequestTopic[] = "objscan/robot_request";
-constexpr char kResponseTopic[] = "objscan/robot_response";
-constexpr char kDepthTopic[] = "camera/depth/image";
-constexpr char kInfoTopic[] = "camera/depth/camera_info";
-constexpr char kInstanceTopic[] = "camera/depth/gt_instance";
+// The topics (ros_messages.h) are relative to the node's namespace: remap them as usual, name:=/other.
 
 // A RobotLink over roscpp. Its subscriptions have their own callback queue, served only while a call
 // waits, so nothing arrives between calls and messages are handled in order on this one thread.
@@ -107,15 +102,10 @@ class RosLink : public RobotLink {
     }
     const ros::Time stamp = depth->header.stamp;
     depth_.pop_front();
-    platform::DepthFrame frame;
-    const std::string what = depth_sub_.getTopic();
-    frame.depth_m = DepthMetresFromImage(FromImageMsg(*depth), what);
-    frame.intrinsics = IntrinsicsFromCameraInfo(FromCameraInfoMsg(*infos_.at(stamp)), hello_intrinsics_.min_range_m,
-                                                hello_intrinsics_.max_range_m, info_sub_.getTopic());
-    if (frame.depth_m.size() != static_cast<std::size_t>(frame.intrinsics.NumPixels())) {
-      throw InputError(what + ": depth image and camera info differ in size");
-    }
-    if (ground_truth_) frame.gt_instance = InstancesFromImage(FromImageMsg(*instances_.at(stamp)), instance_sub_.getTopic());
+    platform::DepthFrame frame =
+        FrameFromMsgs(*depth, *infos_.at(stamp), ground_truth_ ? instances_.at(stamp).get() : nullptr,
+                      hello_intrinsics_, {depth_sub_.getTopic(), info_sub_.getTopic(),
+                       ground_truth_ ? instance_sub_.getTopic() : std::string()});
     try {
       const geometry_msgs::TransformStamped t = tf_.lookupTransform(args_.world_frame, depth->header.frame_id, stamp,
                                                                     ros::Duration(args_.frame_timeout_s));

@@ -1,6 +1,9 @@
 #include "ros_messages.h"
 
 #include <cstring>
+#include <string>
+
+#include "objscan/common/error.h"
 
 namespace objscan::ros_bridge {
 
@@ -67,6 +70,20 @@ TransformBuffer FromTransformMsg(const geometry_msgs::Transform& msg) {
   t.translation_m = {msg.translation.x, msg.translation.y, msg.translation.z};
   t.rotation_xyzw = {msg.rotation.x, msg.rotation.y, msg.rotation.z, msg.rotation.w};
   return t;
+}
+
+platform::DepthFrame FrameFromMsgs(const sensor_msgs::Image& depth, const sensor_msgs::CameraInfo& info,
+                                   const sensor_msgs::Image* instance, const platform::CameraIntrinsics& hello,
+                                   const FrameSources& sources) {
+  platform::DepthFrame frame;
+  frame.depth_m = DepthMetresFromImage(FromImageMsg(depth), sources.depth);
+  frame.intrinsics =
+      IntrinsicsFromCameraInfo(FromCameraInfoMsg(info), hello.min_range_m, hello.max_range_m, sources.info);
+  if (frame.depth_m.size() != static_cast<std::size_t>(frame.intrinsics.NumPixels())) {
+    throw InputError(sources.depth + ": depth image and camera info differ in size");
+  }
+  if (instance != nullptr) frame.gt_instance = InstancesFromImage(FromImageMsg(*instance), sources.instance);
+  return frame;
 }
 
 sensor_msgs::PointCloud2 LabelledCloudMsg(const std::vector<Eigen::Vector3f>& points,

@@ -14,9 +14,17 @@
 #include "depth_image.h"
 #include "objscan/geometry/pose.h"
 #include "objscan/io/ply.h"
+#include "objscan/platform/platform.h"
 #include "pose_conversion.h"
 
 namespace objscan::ros_bridge {
+
+// The robot's topics, relative to the nodes' namespace (docs/ros.md).
+constexpr char kRequestTopic[] = "objscan/robot_request";
+constexpr char kResponseTopic[] = "objscan/robot_response";
+constexpr char kDepthTopic[] = "camera/depth/image";
+constexpr char kInfoTopic[] = "camera/depth/camera_info";
+constexpr char kInstanceTopic[] = "camera/depth/gt_instance";
 
 sensor_msgs::Image ToImageMsg(const ImageBuffer& image, const std_msgs::Header& header);
 ImageBuffer FromImageMsg(const sensor_msgs::Image& msg);
@@ -24,6 +32,18 @@ sensor_msgs::CameraInfo ToCameraInfoMsg(const CameraInfoBuffer& info, const std_
 CameraInfoBuffer FromCameraInfoMsg(const sensor_msgs::CameraInfo& msg);
 geometry_msgs::Transform ToTransformMsg(const TransformBuffer& transform);
 TransformBuffer FromTransformMsg(const geometry_msgs::Transform& msg);
+
+// Where a frame's three messages came from, named in errors (their topics, or a bag's).
+struct FrameSources {
+  std::string depth, info, instance;
+};
+
+// A depth frame from its image, camera info and (when not null) ground-truth instance image, as the
+// robot sent them; the range limits from the robot's hello (CameraInfo has none). The pose is the
+// caller's (tf). Throws InputError naming the source when they do not read or differ in size.
+platform::DepthFrame FrameFromMsgs(const sensor_msgs::Image& depth, const sensor_msgs::CameraInfo& info,
+                                   const sensor_msgs::Image* instance, const platform::CameraIntrinsics& hello,
+                                   const FrameSources& sources);
 
 // The labelled reconstruction: x y z (float32), object_id and category_id (int32, -1 = none) per point.
 sensor_msgs::PointCloud2 LabelledCloudMsg(const std::vector<Eigen::Vector3f>& points,

@@ -42,12 +42,12 @@ class SimNode {
   SimNode(const SimArgs& args, platform::Platform* robot) : args_(args), server_(robot) {
     ros::NodeHandle nh;
     const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
-    response_pub_ = nh.advertise<std_msgs::String>("objscan/robot_response", 1000);
-    depth_pub_ = nh.advertise<sensor_msgs::Image>("camera/depth/image", 10);
-    info_pub_ = nh.advertise<sensor_msgs::CameraInfo>("camera/depth/camera_info", 10);
-    if (args_.ground_truth) instance_pub_ = nh.advertise<sensor_msgs::Image>("camera/depth/gt_instance", 10);
+    response_pub_ = nh.advertise<std_msgs::String>(kResponseTopic, 1000);
+    depth_pub_ = nh.advertise<sensor_msgs::Image>(kDepthTopic, 10);
+    info_pub_ = nh.advertise<sensor_msgs::CameraInfo>(kInfoTopic, 10);
+    if (args_.ground_truth) instance_pub_ = nh.advertise<sensor_msgs::Image>(kInstanceTopic, 10);
     path_pub_ = nh.advertise<nav_msgs::Path>("objscan/base_path", 10, true);
-    request_sub_ = nh.subscribe("objscan/robot_request", 1000, &SimNode::OnRequest, this, hints);
+    request_sub_ = nh.subscribe(kRequestTopic, 1000, &SimNode::OnRequest, this, hints);
     PublishPose(ros::Time::now());
   }
 
