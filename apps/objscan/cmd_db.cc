@@ -245,7 +245,13 @@ int RunEval(const DbArgs& a) {
   j["objectness_partial_mean"] = r.objectness_partial_mean;
   j["ms_per_query"] = r.ms_per_query;
   j["classifier_train_s"] = r.classifier_train_s;
+  j["classifier_max_depth"] = r.classifier_max_depth;
   j["classify_ms_per_query"] = r.classify_ms_per_query;
+  // The naming options the names were given with: recognition_summary.py re-decides names from them.
+  const recognition::CategoryNamingOptions& naming = options.recognition.naming;
+  j["naming"] = {{"classifier_weight", naming.classifier_weight},
+                 {"absent_share", naming.absent_share},
+                 {"other_weight", naming.other_weight}};
   nlohmann::json by_views = nlohmann::json::array();
   for (const auto& v : r.by_views) {
     // Per category: top-1 of the name given, over the queries of that kind.

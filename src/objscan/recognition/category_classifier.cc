@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <Eigen/Eigenvalues>
@@ -19,6 +20,11 @@ void CategoryClassifierOptions::Validate() const {
                   "must be 'forest' or 'softmax', not '" + method + "'");
   config::Require(balance == "samples" || balance == "models", "recognition.classifier.balance",
                   "must be 'samples' or 'models', not '" + balance + "'");
+  for (double depth : validation_depths) {
+    config::Require(depth >= 1.0 && depth <= 64.0 && depth == std::floor(depth), "recognition.classifier.validation_depths",
+                    "every depth must be a whole number from 1 to 64");
+  }
+  config::Require(validation_trees >= 1, "recognition.classifier.validation_trees", "must be at least 1");
   config::Require(half_views_per_model >= 0, "recognition.classifier.half_views_per_model", "must be >= 0");
   forest.Validate();
   config::Require(views_per_model >= 0, "recognition.classifier.views_per_model", "must be >= 0");
@@ -309,6 +315,7 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
       data.weights.push_back(static_cast<float>(w(i) * n));
     }
     c.forest_ = RandomForest::Train(data, options.forest);
+    c.max_depth_ = options.forest.max_depth;
     return c;
   }
   c.weights_ = Eigen::MatrixXd::Zero(classes, d + 1);
@@ -324,6 +331,82 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
   return c;
 }
 
+namespace {
+
+// The depth of validation_depths whose forests name held-out samples best: the mean over folds of
+// the accuracy per class (classes the fold's training part and held-out part both have). Folds are
+// the sources (one per training database) when there are two or more, else two halves of the models.
+// Nothing when no fold could be scored (one model per category, say).
+std::optional<int> SelectDepthByHeldOutValidation(const std::vector<std::array<float, kNumShapeFeatures>>& features,
+                                   const std::vector<world::Category>& labels, const std::vector<int>& groups,
+                                   const std::vector<int>& sources, const CategoryClassifierOptions& options) {
+  std::set<int> distinct_sources(sources.begin(), sources.end());
+  std::vector<int> fold(features.size());
+  int num_folds = 0;
+  if (distinct_sources.size() >= 2) {
+    std::map<int, int> fold_of_source;
+    for (int s : distinct_sources) fold_of_source[s] = num_folds++;
+    for (std::size_t i = 0; i < fold.size(); ++i) fold[i] = fold_of_source[sources[i]];
+  } else {
+    num_folds = 2;
+    for (std::size_t i = 0; i < fold.size(); ++i) {
+      fold[i] = static_cast<int>(DeriveSeed(options.seed, static_cast<std::uint64_t>(groups[i])) % 2);
+    }
+  }
+  CategoryClassifierOptions fit_options = options;
+  fit_options.validation_depths.clear();
+  fit_options.forest.num_trees = std::min(options.forest.num_trees, options.validation_trees);
+  std::optional<int> best_depth;
+  double best_score = -1.0;
+  for (double depth_value : options.validation_depths) {
+    const int depth = static_cast<int>(depth_value);
+    fit_options.forest.max_depth = depth;
+    double score_sum = 0.0;
+    int scored_folds = 0;
+    for (int f = 0; f < num_folds; ++f) {
+      std::vector<std::array<float, kNumShapeFeatures>> train_features;
+      std::vector<world::Category> train_labels;
+      std::vector<int> train_groups;
+      for (std::size_t i = 0; i < features.size(); ++i) {
+        if (fold[i] == f) continue;
+        train_features.push_back(features[i]);
+        train_labels.push_back(labels[i]);
+        train_groups.push_back(groups[i]);
+      }
+      const CategoryClassifier c = CategoryClassifier::Fit(train_features, train_labels, fit_options, train_groups);
+      if (!c.trained()) continue;
+      std::array<int, world::kNumCategories> right{}, seen{};
+      for (std::size_t i = 0; i < features.size(); ++i) {
+        if (fold[i] != f) continue;
+        const auto k = static_cast<std::size_t>(world::CategoryId(labels[i]));
+        if (std::find(c.classes().begin(), c.classes().end(), labels[i]) == c.classes().end()) continue;
+        const CategoryClassifier::Probabilities p = c.Classify(features[i]);
+        ++seen[k];
+        if (std::max_element(p.begin(), p.end()) - p.begin() == static_cast<std::ptrdiff_t>(k)) ++right[k];
+      }
+      double accuracy_sum = 0.0;
+      int classes = 0;
+      for (std::size_t k = 0; k < seen.size(); ++k) {
+        if (seen[k] == 0) continue;
+        accuracy_sum += static_cast<double>(right[k]) / seen[k];
+        ++classes;
+      }
+      if (classes == 0) continue;
+      score_sum += accuracy_sum / classes;
+      ++scored_folds;
+    }
+    if (scored_folds == 0) continue;
+    const double score = score_sum / scored_folds;
+    if (score > best_score) {
+      best_score = score;
+      best_depth = depth;
+    }
+  }
+  return best_depth;
+}
+
+}  // namespace
+
 CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, const CategoryClassifierOptions& options) {
   return Train(std::vector<const ModelDatabase*>{&database}, options);
 }
@@ -338,7 +421,9 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
   // A height above the floor the entry's model stands at in the database's scenes (0 when unknown),
   // drawn per sample: the floor lies that far below the model frame's z = 0.
   const ModelDatabase* database = nullptr;  // the one whose entries are being read
+  int source = 0;                           // its index
   std::vector<int> groups;                  // the model of each sample, unique over the databases
+  std::vector<int> sources;                 // the database of each sample
   int group_base = 0;
   auto floor_z_of = [&](const DatabaseEntry& e) {
     if (e.model_index < 0 || e.model_index >= static_cast<std::int32_t>(database->models().size())) return 0.0;
@@ -352,9 +437,11 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
     features.push_back(ShapeFeatures(points, normals, floor_z_of(e)));
     labels.push_back(e.category);
     groups.push_back(group_base + e.model_index);
+    sources.push_back(source);
   };
   for (std::size_t d = 0; d < databases.size(); ++d) {
     database = databases[d];
+    source = static_cast<int>(d);
     if (d > 0) group_base += static_cast<int>(databases[d - 1]->models().size()) + 1;
     for (const DatabaseEntry& e : database->entries()) {
       if (e.keypoints.size() != e.keypoint_normals.size()) continue;
@@ -404,7 +491,13 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
       }
     }
   }
-  return Fit(features, labels, options, groups);
+  if (options.method != "forest" || options.validation_depths.empty() || features.empty()) {
+    return Fit(features, labels, options, groups);
+  }
+  CategoryClassifierOptions fit_options = options;
+  fit_options.forest.max_depth = SelectDepthByHeldOutValidation(features, labels, groups, sources, options)
+                                     .value_or(options.forest.max_depth);
+  return Fit(features, labels, fit_options, groups);
 }
 
 CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<float, kNumShapeFeatures>& features) const {
@@ -434,7 +527,7 @@ CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<
 
 namespace {
 
-constexpr io::BinaryFileFormat kClassifierFormat = {"OBJSCCL\n", 1, "category classifier",
+constexpr io::BinaryFileFormat kClassifierFormat = {"OBJSCCL\n", 2, "category classifier",
                                                     "delete it: it is trained again"};
 
 void WriteMatrix(const Eigen::MatrixXd& m, io::BinaryWriter* w) {
@@ -461,6 +554,7 @@ void CategoryClassifier::Save(const std::string& path) const {
   for (world::Category c : classes_) w.String(world::CategoryName(c));
   w.Pod(static_cast<std::uint8_t>(forest_.trained() ? 1 : 0));
   if (forest_.trained()) {
+    w.Pod(static_cast<std::int32_t>(max_depth_));
     forest_.Write(&w);
   } else {
     WriteMatrix(mean_, &w);
@@ -484,6 +578,8 @@ CategoryClassifier CategoryClassifier::Load(const std::string& path) {
     c.classes_.push_back(*category);
   }
   if (r.Pod<std::uint8_t>("learner") == 1) {
+    c.max_depth_ = r.Pod<std::int32_t>("max_depth");
+    if (c.max_depth_ < 1) r.Fail("a forest depth below 1");
     c.forest_ = RandomForest::Read(&r);
     if (c.forest_.num_features() != kNumShapeFeatures || c.forest_.num_classes() != static_cast<int>(num_classes))
       r.Fail("the forest's features or classes disagree with the classifier's");

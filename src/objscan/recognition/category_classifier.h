@@ -48,6 +48,15 @@ struct CategoryClassifierOptions {
   // How samples weigh: "samples" (every sample the same within its class) or "models" (every model
   // the same within its class, however many pieces and views it gave). Classes weigh the same.
   std::string balance = "samples";
+  // The forest's depth chosen by held-out validation among these (empty: forest.max_depth as given).
+  // Held out is what the recognizer will meet: with training databases of two or more sources (a
+  // library and generated models, say) each source in turn, learnt from the others, since the
+  // scenes' furniture comes from yet other hands; with one source, half of its models, learnt from
+  // the other half (forest.max_depth when no category has models in both halves). Deep trees learn
+  // the training shapes one by one and serve shapes of their own source; shallower ones carry a
+  // category to shapes of another.
+  std::vector<double> validation_depths = {6, 8, 12, 18};  // whole numbers (config lists are real)
+  int validation_trees = 16;  // trees per validation forest (the chosen depth then grows forest.num_trees)
   // Keep the trained classifier in objscan's cache folder and read it back on the next run with the
   // same training data and options (classifier_cache.h): the same classifier without training again.
   bool cache = true;
@@ -69,6 +78,8 @@ struct CategoryClassifierOptions {
     v("seed", seed);
     v("extra_training_databases", extra_training_databases);
     v("balance", balance);
+    v("validation_depths", validation_depths);
+    v("validation_trees", validation_trees);
     v("cache", cache);
     v("forest", forest);
     v("iterations", iterations);
@@ -120,6 +131,9 @@ class CategoryClassifier {
     return Classify(ShapeFeatures(points, normals, floor_z_m));
   }
   const std::vector<world::Category>& classes() const { return classes_; }
+  // The forest's depth limit it was grown with (validation_depths' choice or forest.max_depth); 0 for
+  // "softmax" or an untrained classifier.
+  int max_depth() const { return max_depth_; }
 
   // The trained classifier as a file (classifier_cache.h) and back; Load throws InputError naming the
   // file when it is missing, damaged or of another format, and gives back what was saved exactly.
@@ -128,6 +142,7 @@ class CategoryClassifier {
 
  private:
   std::vector<world::Category> classes_;
+  int max_depth_ = 0;
   // method "softmax"
   Eigen::VectorXd mean_, inverse_std_;  // feature standardisation
   Eigen::MatrixXd weights_;             // classes x (features + 1), the last column the bias

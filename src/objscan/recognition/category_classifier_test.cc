@@ -202,6 +202,38 @@ TEST(CategoryClassifierTest, TrainedOnAShapeDatabaseNamesUnseenViewsAndHalves) {
   EXPECT_GE(half_right, total * 7 / 10) << half_right << " of " << total << " halves";
 }
 
+// The forest's depth is chosen by held-out validation. Two databases are two sources, each held out
+// in turn: stumps (depth 1) cannot tell five shapes apart, depth 10 can, so 10 is chosen in either
+// order. One database of one model per category has no category to hold out (forest.max_depth is
+// kept), nor has a classifier without a list of depths.
+TEST(CategoryClassifierTest, ChoosesTheForestDepthThatNamesHeldOutShapes) {
+  const ModelDatabase db = BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions());
+  CategoryClassifierOptions options;
+  options.extra_training_databases = {};
+  options.forest.num_trees = 8;
+  options.forest.threads = 1;
+  options.validation_trees = 4;
+  options.forest.max_depth = 3;
+  const std::vector<const ModelDatabase*> two_sources = {&db, &db};
+  options.validation_depths = {1, 10};
+  EXPECT_EQ(CategoryClassifier::Train(two_sources, options).max_depth(), 10);
+  options.validation_depths = {10, 1};
+  EXPECT_EQ(CategoryClassifier::Train(two_sources, options).max_depth(), 10);
+  EXPECT_EQ(CategoryClassifier::Train(db, options).max_depth(), 3);
+  options.validation_depths = {};
+  EXPECT_EQ(CategoryClassifier::Train(two_sources, options).max_depth(), 3);
+  options.method = "softmax";
+  options.iterations = 20;
+  EXPECT_EQ(CategoryClassifier::Train(db, options).max_depth(), 0);
+  options.validation_depths = {2.5};
+  try {
+    options.Validate();
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("recognition.classifier.validation_depths"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CategoryClassifierTest, OptionsOutOfRangeNameTheirField) {
   CategoryClassifierOptions options;
   options.iterations = 0;

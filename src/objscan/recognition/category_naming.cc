@@ -8,7 +8,7 @@ namespace objscan::recognition {
 void CategoryNamingOptions::Validate() const {
   config::RequireNonNegative("recognition.naming.classifier_weight", classifier_weight);
   config::RequireInRange("recognition.naming.absent_share", absent_share, 0.0, 1.0);
-  config::RequireInRange("recognition.naming.other_weight", other_weight, 0.0, 1.0);
+  config::RequireNonNegative("recognition.naming.other_weight", other_weight);
 }
 
 CategoryName NameCategory(const CategoryClassifier::Probabilities& posterior_in,

@@ -6,10 +6,12 @@
 // models of category k (F_absent = absent_share x the weakest retrieved score for a category M(c)
 // lacks), the name is argmax_k P(k)^classifier_weight x F(k). classifier_weight = 0 is the paper's
 // choice (the category of the best model); a large weight is the classifier's choice. P(other) is
-// first multiplied by other_weight: the classifier learns `other` from every prop and plant of the
-// database, a class that spans all shapes, and trained class-balanced it takes queries from every
-// furniture category (OASC dev models against the Sweet Home 3D library and the other worlds:
-// docs/results/oasc-dev-2026-11-28-category-recognizer.md).
+// first multiplied by other_weight, a prior for "not recognized": the classifier learns `other` from
+// every prop and plant of the database, a class that spans all shapes. Where the forest's trees are
+// deep, `other` holds leaves of its own and takes furniture queries (weights below 1 served it:
+// docs/results/oasc-dev-2026-11-28-category-recognizer.md); with the shallower trees held-out
+// validation chooses for real scenes, its share is spread over many leaves and a weight above 1
+// names props `other` again (docs/results/recognizer-2026-11-29-held-out-depth.md).
 #include <vector>
 
 #include "objscan/common/config.h"
@@ -21,7 +23,7 @@ namespace objscan::recognition {
 struct CategoryNamingOptions {
   double classifier_weight = 1.0;
   double absent_share = 0.5;
-  double other_weight = 0.5;
+  double other_weight = 1.5;
 
   template <class V>
   void Visit(V& v) {

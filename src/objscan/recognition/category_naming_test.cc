@@ -55,6 +55,13 @@ TEST(CategoryNamingTest, OtherCountsAtItsWeight) {
   EXPECT_DOUBLE_EQ(name.posterior, 0.4);
   options.other_weight = 1.0;
   EXPECT_EQ(NameCategory(posterior, votes, options).category, Category::kOther);
+  // A weight above 1 favours `other`: 1.5 x 0.2 x 0.6 = 0.18 against table 0.3 x 0.5 = 0.15.
+  const auto unsure = Posterior({{Category::kOther, 0.2}, {Category::kTable, 0.3}, {Category::kDesk, 0.5}});
+  const std::vector<RetrievedCategory> table_votes = {{Category::kOther, 0.6}, {Category::kTable, 0.5}};
+  options.other_weight = 1.0;
+  EXPECT_EQ(NameCategory(unsure, table_votes, options).category, Category::kTable);
+  options.other_weight = 1.5;
+  EXPECT_EQ(NameCategory(unsure, table_votes, options).category, Category::kOther);
 }
 
 TEST(CategoryNamingTest, OneRecognizerAloneNamesAndNeitherNamesNothing) {
@@ -75,6 +82,14 @@ TEST(CategoryNamingTest, OptionsOutOfRangeNameTheirField) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("recognition.naming.absent_share"), std::string::npos) << e.what();
+  }
+  options = CategoryNamingOptions();
+  options.other_weight = -0.5;
+  try {
+    options.Validate();
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("recognition.naming.other_weight"), std::string::npos) << e.what();
   }
 }
 

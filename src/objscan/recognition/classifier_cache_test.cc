@@ -62,6 +62,7 @@ TEST_P(ClassifierFileTest, SavedAndLoadedClassifiesTheSame) {
   trained.Save(dir.File("c.bin"));
   const CategoryClassifier loaded = CategoryClassifier::Load(dir.File("c.bin"));
   EXPECT_EQ(loaded.classes(), trained.classes());
+  EXPECT_EQ(loaded.max_depth(), trained.max_depth());
   for (const auto& probe : Probes()) EXPECT_EQ(loaded.Classify(probe), trained.Classify(probe));
 }
 

@@ -121,7 +121,7 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
 
   {
     const Stopwatch train;
-    recognizer.classifier();  // trained once, before the queries
+    out.classifier_max_depth = recognizer.classifier().max_depth();  // trained once, before the queries
     out.classifier_train_s = train.ElapsedMs() / 1000.0;
   }
   const int workers = ResolveThreadCount(options.threads);

@@ -69,6 +69,7 @@ struct DatabaseEvalResult {
   double objectness_partial_mean = 0.0;
   double ms_per_query = 0.0;            // describe + retrieve (+ align, objectness) per query
   double classifier_train_s = 0.0;      // training the category classifier on the database
+  int classifier_max_depth = 0;         // the depth its forest was grown to (validation_depths' choice)
   double classify_ms_per_query = 0.0;   // the classifier's features and posterior per query
   std::vector<ViewCountAccuracy> by_views;  // 1 and 3 views
   int objectness_models = 0;
