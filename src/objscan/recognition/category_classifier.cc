@@ -356,6 +356,22 @@ std::optional<int> SelectDepthByHeldOutValidation(const std::vector<std::array<f
   CategoryClassifierOptions fit_options = options;
   fit_options.validation_depths.clear();
   fit_options.forest.num_trees = std::min(options.forest.num_trees, options.validation_trees);
+  // Each fold's training part, gathered once for every depth.
+  struct TrainingPart {
+    std::vector<std::array<float, kNumShapeFeatures>> features;
+    std::vector<world::Category> labels;
+    std::vector<int> groups;
+  };
+  std::vector<TrainingPart> parts(static_cast<std::size_t>(num_folds));
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    for (int f = 0; f < num_folds; ++f) {
+      if (fold[i] == f) continue;
+      TrainingPart& part = parts[static_cast<std::size_t>(f)];
+      part.features.push_back(features[i]);
+      part.labels.push_back(labels[i]);
+      part.groups.push_back(groups[i]);
+    }
+  }
   std::optional<int> best_depth;
   double best_score = -1.0;
   for (double depth_value : options.validation_depths) {
@@ -364,16 +380,8 @@ std::optional<int> SelectDepthByHeldOutValidation(const std::vector<std::array<f
     double score_sum = 0.0;
     int scored_folds = 0;
     for (int f = 0; f < num_folds; ++f) {
-      std::vector<std::array<float, kNumShapeFeatures>> train_features;
-      std::vector<world::Category> train_labels;
-      std::vector<int> train_groups;
-      for (std::size_t i = 0; i < features.size(); ++i) {
-        if (fold[i] == f) continue;
-        train_features.push_back(features[i]);
-        train_labels.push_back(labels[i]);
-        train_groups.push_back(groups[i]);
-      }
-      const CategoryClassifier c = CategoryClassifier::Fit(train_features, train_labels, fit_options, train_groups);
+      const TrainingPart& part = parts[static_cast<std::size_t>(f)];
+      const CategoryClassifier c = CategoryClassifier::Fit(part.features, part.labels, fit_options, part.groups);
       if (!c.trained()) continue;
       std::array<int, world::kNumCategories> right{}, seen{};
       for (std::size_t i = 0; i < features.size(); ++i) {
