@@ -5,7 +5,7 @@
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
-#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -47,6 +47,9 @@ class SimNode {
     info_pub_ = nh.advertise<sensor_msgs::CameraInfo>(kInfoTopic, 10);
     if (args_.ground_truth) instance_pub_ = nh.advertise<sensor_msgs::Image>(kInstanceTopic, 10);
     path_pub_ = nh.advertise<nav_msgs::Path>("objscan/base_path", 10, true);
+    // /tf through a publisher of our own (what tf2_ros::TransformBroadcaster does), so that its
+    // subscribers can be counted before the scan starts.
+    tf_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
     request_sub_ = nh.subscribe(kRequestTopic, 1000, &SimNode::OnRequest, this, hints);
     PublishPose(ros::Time::now());
   }
@@ -66,7 +69,7 @@ class SimNode {
       Capture();
       return;
     }
-    if (request.kind == RequestKind::kHello) WaitForImageSubscribers();
+    if (request.kind == RequestKind::kHello) WaitForSubscribers();
     const RobotResponse response = server_.Serve(request);
     if (!response.error.empty()) ROS_ERROR("objscan_sim_ros: %s", response.error.c_str());
     if (request.kind == RequestKind::kMoveCamera && response.status == platform::ReachStatus::kOk) {
@@ -80,17 +83,29 @@ class SimNode {
     response_pub_.publish(out);
   }
 
-  // A recorder (rosbag) listening beside objscan_ros gets every frame only when it is connected
-  // before the first one: the scan starts once enough image subscribers are there.
-  void WaitForImageSubscribers() {
+  // A recorder (rosbag) listening beside objscan_ros gets the whole scan only when it is connected
+  // to every topic the robot publishes before the first answer: each connects on its own time
+  // (a bag once missed the hello's response this way), so the scan starts once each of them has
+  // enough subscribers.
+  void WaitForSubscribers() {
+    std::vector<const ros::Publisher*> topics = {&response_pub_, &tf_pub_, &info_pub_, &depth_pub_};
+    if (args_.ground_truth) topics.push_back(&instance_pub_);
+    auto fewest = [&] {
+      const ros::Publisher* least = topics.front();
+      for (const ros::Publisher* p : topics) {
+        if (p->getNumSubscribers() < least->getNumSubscribers()) least = p;
+      }
+      return least;
+    };
     const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(args_.subscriber_timeout_s);
-    while (ros::ok() && static_cast<int>(depth_pub_.getNumSubscribers()) < args_.min_image_subscribers &&
+    while (ros::ok() && static_cast<int>(fewest()->getNumSubscribers()) < args_.min_image_subscribers &&
            ros::WallTime::now() < until) {
       ros::WallDuration(0.01).sleep();
     }
-    if (static_cast<int>(depth_pub_.getNumSubscribers()) < args_.min_image_subscribers) {
-      ROS_WARN("objscan_sim_ros: %d of %d image subscribers after %.0f s; serving anyway",
-               depth_pub_.getNumSubscribers(), args_.min_image_subscribers, args_.subscriber_timeout_s);
+    const ros::Publisher* least = fewest();
+    if (static_cast<int>(least->getNumSubscribers()) < args_.min_image_subscribers) {
+      ROS_WARN("objscan_sim_ros: %d of %d subscribers on %s after %.0f s; serving anyway", least->getNumSubscribers(),
+               args_.min_image_subscribers, least->getTopic().c_str(), args_.subscriber_timeout_s);
     }
   }
 
@@ -118,7 +133,9 @@ class SimNode {
     // The camera straight from the world frame: one transform, nothing composed on the way.
     camera.child_frame_id = args_.camera_frame;
     camera.transform = ToTransformMsg(TransformFromPose(state.T_world_camera));
-    tf_.sendTransform(std::vector<geometry_msgs::TransformStamped>{base, camera});
+    tf2_msgs::TFMessage msg;
+    msg.transforms = {base, camera};
+    tf_pub_.publish(msg);
   }
 
   void PublishPath(const navigation::Path2D& path) {
@@ -139,9 +156,8 @@ class SimNode {
   const SimArgs& args_;
   int requests_ = 0;
   RobotServer server_;
-  ros::Publisher response_pub_, depth_pub_, info_pub_, instance_pub_, path_pub_;
+  ros::Publisher response_pub_, depth_pub_, info_pub_, instance_pub_, path_pub_, tf_pub_;
   ros::Subscriber request_sub_;
-  tf2_ros::TransformBroadcaster tf_;
 };
 
 int RunSim(const SimArgs& args) {
@@ -170,7 +186,8 @@ int main(int argc, char** argv) {
   app.add_option("--base-frame", args.base_frame, "tf frame of the robot's base")->capture_default_str();
   app.add_option("--camera-frame", args.camera_frame, "tf frame of the depth camera (optical: z forward)")->capture_default_str();
   app.add_option("--min-image-subscribers", args.min_image_subscribers,
-                 "wait for this many depth image subscribers before the scan starts (2 with a recorder)")
+                 "wait for this many subscribers on each topic the robot publishes (images, camera info, /tf, "
+                 "responses) before the scan starts (2 with a recorder)")
       ->capture_default_str();
   app.add_option("--subscriber-timeout-s", args.subscriber_timeout_s, "seconds to wait for them")->capture_default_str();
   app.add_option("--silent-after-requests", args.silent_after_requests,

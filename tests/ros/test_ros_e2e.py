@@ -169,6 +169,12 @@ def main():
             read += 1
         if read != frames:
             fail(f"read {read} depth images back, expected {frames}")
+        # Every answer of the robot, from the hello's on: the simulator waits for the recorder on each
+        # topic it publishes (a recorder late on the response topic once lost the hello's answer).
+        answered = sorted(json.loads(msg.data)["id"] for _, msg, _ in
+                          bag.read_messages(topics=["/objscan/robot_response"]))
+        if not answered or answered[0] != 1:
+            fail(f"the bag holds the robot's answers from request {answered[:1]} on, not from the hello (1)")
     # Played back into the reconstruction: objscan_ros --bag answers the scan from the bag alone (the
     # master is gone) and must make the run over ROS again, file for file.
     replay_out = os.path.join(work, "replay")
