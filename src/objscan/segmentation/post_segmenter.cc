@@ -1,7 +1,6 @@
 #include "objscan/segmentation/post_segmenter.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -24,7 +23,6 @@ void PostSegmenterOptions::Validate() const {
                   "must be max, mean or min");
   config::RequireInRange("merge_min_gain", merge_min_gain, -1.0, 1.0);
   config::RequireInRange("object_merge_min_gain", object_merge_min_gain, -1.0, 1.0);
-  config::RequireNonNegative("group_rematch_growth_fraction", group_rematch_growth_fraction);
   alpha_expansion.Validate();
 }
 
@@ -69,78 +67,60 @@ void PostSegmenter::ClearCache() {
   group_cache_.clear();
 }
 
-PostSegmenter::GroupKey PostSegmenter::KeyOf(const PostSegmenterInput& input, const std::vector<int>& members,
-                                             GroupState* state) {
-  std::vector<std::pair<std::int32_t, std::uint64_t>> members_by_id;
-  members_by_id.reserve(members.size());
-  state->num_points = 0.0;
+PostSegmenter::GroupKey PostSegmenter::KeyOf(const PostSegmenterInput& input, const std::vector<int>& members) {
+  GroupKey key;
+  key.reserve(members.size());
   for (int i : members) {
     const auto& c = input.components[static_cast<std::size_t>(i)];
-    members_by_id.emplace_back(c.id, c.revision);
-    state->num_points += static_cast<double>(c.num_points);
+    key.emplace_back(c.id, c.revision);
   }
-  std::sort(members_by_id.begin(), members_by_id.end());
-  GroupKey key;
-  key.reserve(members_by_id.size());
-  state->revisions.clear();
-  state->revisions.reserve(members_by_id.size());
-  for (const auto& [id, revision] : members_by_id) {
-    key.push_back(id);
-    state->revisions.push_back(revision);
-  }
+  std::sort(key.begin(), key.end());
   return key;
-}
-
-bool PostSegmenter::StillFresh(const GroupState& then, const GroupState& now) const {
-  if (then.revisions == now.revisions) return true;
-  if (then.num_points <= 0.0 || now.num_points <= 0.0) return false;
-  return std::abs(now.num_points - then.num_points) <= options_.group_rematch_growth_fraction * then.num_points;
 }
 
 const MatchResult& PostSegmenter::GroupMatches(const PostSegmenterInput& input, const std::vector<int>& members,
                                                PostSegmenterStats* stats) {
-  GroupState state;
-  GroupKey key = KeyOf(input, members, &state);
+  GroupKey key = KeyOf(input, members);
   auto it = group_cache_.find(key);
-  if (it != group_cache_.end() && StillFresh(it->second.state, state)) {
+  if (it != group_cache_.end()) {
     if (stats != nullptr) ++stats->group_cache_hits;
     it->second.used = true;
     return it->second.result;
   }
+  std::vector<std::int32_t> ids;
+  ids.reserve(key.size());
+  for (const auto& k : key) ids.push_back(k.first);
   if (stats != nullptr) ++stats->group_queries;
   GroupEntry entry;
-  entry.result = matcher_->Match(key, MatchScope::kFullModels);
-  entry.state = std::move(state);
+  entry.result = matcher_->Match(ids, MatchScope::kFullModels);
   entry.used = true;
-  GroupEntry& stored = group_cache_[std::move(key)];
-  stored = std::move(entry);
-  return stored.result;
+  return group_cache_.emplace(std::move(key), std::move(entry)).first->second.result;
 }
 
 void PostSegmenter::PrefetchGroups(const PostSegmenterInput& input, const std::vector<std::vector<int>>& unions,
                                    PostSegmenterStats* stats) {
   std::vector<GroupKey> missing;
-  std::vector<GroupState> missing_states;
+  std::vector<std::vector<std::int32_t>> queries;
   for (const std::vector<int>& members : unions) {
-    GroupState state;
-    GroupKey key = KeyOf(input, members, &state);
+    GroupKey key = KeyOf(input, members);
     auto it = group_cache_.find(key);
-    if (it != group_cache_.end() && StillFresh(it->second.state, state)) {
+    if (it != group_cache_.end()) {
       ++stats->group_cache_hits;
       it->second.used = true;
       continue;
     }
     if (std::find(missing.begin(), missing.end(), key) != missing.end()) continue;
+    std::vector<std::int32_t> ids;
+    for (const auto& k : key) ids.push_back(k.first);
+    queries.push_back(std::move(ids));
     missing.push_back(std::move(key));
-    missing_states.push_back(std::move(state));
   }
-  if (missing.empty()) return;
-  std::vector<MatchResult> results = matcher_->MatchBatch(missing, MatchScope::kFullModels);
-  if (results.size() != missing.size()) throw InputError("PostSegmenter: matcher returned a wrong batch size");
-  stats->group_queries += static_cast<int>(missing.size());
+  if (queries.empty()) return;
+  std::vector<MatchResult> results = matcher_->MatchBatch(queries, MatchScope::kFullModels);
+  if (results.size() != queries.size()) throw InputError("PostSegmenter: matcher returned a wrong batch size");
+  stats->group_queries += static_cast<int>(queries.size());
   for (std::size_t q = 0; q < missing.size(); ++q) {
     GroupEntry entry;
-    entry.state = std::move(missing_states[q]);
     entry.result = std::move(results[q]);
     entry.used = true;
     group_cache_[std::move(missing[q])] = std::move(entry);

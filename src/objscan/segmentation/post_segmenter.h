@@ -13,9 +13,8 @@
 // Beyond the paper: (1) a "none" label with a constant data cost for components that match nothing;
 // (2) optional instance splitting (split_instances): a connected same-label group is split into parts
 // when every part has higher objectness than the whole, so two touching chairs stay two chairs;
-// (3) matcher results are cached per component and per adjacent pair, keyed by component id and
-// revision, and per group, keyed by its members and kept while the group's size changes little, so a
-// step only queries what changed.
+// (3) matcher results are cached per component, per adjacent pair and per group, keyed by component
+// id and revision, so a step only queries what changed.
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -78,15 +77,6 @@ struct PostSegmenterOptions {
   // blocks more useful merges than harmful ones (built-in database precision 34.2 -> 30.6, NBOs
   // 37.6 -> 48.5; docs/results/oasc-dev-2026-11-26-loop-objects-of-interest.md).
   bool object_merge_keep_larger_fit = false;
-  // A union of components (an object, or a union tried by instance splitting, object merging or
-  // the smoothness weights) is matched again only when it grew or shrank by more than this share of
-  // its points since it was last matched, or a member changed and the sizes are not known. The same
-  // rule as scanner.rematch_growth_fraction, applied to the union rather than its members: one
-  // member of a large object growing past its own threshold adds little to the object, yet with
-  // keys by member revision it sent every union holding that member back to the matcher (in the
-  // largest OASC dev room, 35080 union queries against 1487 component queries). 0 = match again
-  // whenever a member's revision changes.
-  double group_rematch_growth_fraction = 0.15;
   AlphaExpansionOptions alpha_expansion;
 
   template <class V>
@@ -103,7 +93,6 @@ struct PostSegmenterOptions {
     v("merge_objects", merge_objects);
     v("object_merge_min_gain", object_merge_min_gain);
     v("object_merge_keep_larger_fit", object_merge_keep_larger_fit);
-    v("group_rematch_growth_fraction", group_rematch_growth_fraction);
     v("alpha_expansion", alpha_expansion);
   }
   void Validate() const;
@@ -171,9 +160,8 @@ class PostSegmenter {
   // `matcher` is not owned and must outlive the segmenter. Throws ConfigError on invalid options.
   PostSegmenter(PostSegmenterOptions options, ComponentMatcher* matcher);
 
-  // One post-segmentation of the current components. Queries the matcher only for components and
-  // pairs whose (id, revision) content is not cached, and for groups new or changed beyond
-  // group_rematch_growth_fraction; entries unused by this step are dropped.
+  // One post-segmentation of the current components. Queries the matcher only for components, pairs
+  // and groups whose (id, revision) content is not cached; entries unused by this step are dropped.
   // Throws InputError on duplicate component ids or edges naming unknown components.
   PostSegmentation Update(const PostSegmenterInput& input);
 
@@ -183,17 +171,10 @@ class PostSegmenter {
   const PostSegmenterOptions& options() const { return options_; }
 
  private:
-  // The member ids, ascending: the cache key of a union of components.
-  using GroupKey = std::vector<std::int32_t>;
-  // What a union's cached match was computed from.
-  struct GroupState {
-    std::vector<std::uint64_t> revisions;  // parallel to the key
-    double num_points = 0.0;               // sum of the members' sizes (0 when unknown)
-  };
-  // The cache key and state of a union of components (by index into the input).
-  static GroupKey KeyOf(const PostSegmenterInput& input, const std::vector<int>& members, GroupState* state);
-  // Whether a match computed from `then` still stands for `now` (group_rematch_growth_fraction).
-  bool StillFresh(const GroupState& then, const GroupState& now) const;
+  // (id, revision) of each member, ascending by id: the cache key of a union of components.
+  using GroupKey = std::vector<std::pair<std::int32_t, std::uint64_t>>;
+  // The cache key of a union of components (by index into the input).
+  static GroupKey KeyOf(const PostSegmenterInput& input, const std::vector<int>& members);
 
   struct ComponentEntry {
     std::uint64_t revision = 0;
@@ -207,7 +188,6 @@ class PostSegmenter {
     bool used = false;
   };
   struct GroupEntry {
-    GroupState state;
     MatchResult result;
     bool used = false;
   };

@@ -527,56 +527,6 @@ TEST(PostSegmenterTest, GainSmoothnessWarmStepQueriesOnlyWhatChanged) {
   EXPECT_EQ(warm.objects.size(), 50u);
 }
 
-// With sizes known, a union is matched again only when it grew beyond group_rematch_growth_fraction,
-// however its members' revisions changed; a member alone is a union too.
-TEST(PostSegmenterTest, GroupsAreMatchedAgainOnlyWhenTheyGrewBeyondTheFraction) {
-  for (const double fraction : {0.15, 0.0}) {
-    SCOPED_TRACE(fraction);
-    std::vector<FakeMatcher::TrueObject> objects;
-    PostSegmenterInput input = ChainInput(&objects);
-    for (auto& c : input.components) c.num_points = 100;
-    FakeMatcher matcher(objects);
-    PostSegmenterOptions options;
-    options.merge_objects = false;  // the edges' unions and the members alone, as in the test above
-    options.group_rematch_growth_fraction = fraction;
-    PostSegmenter segmenter(options, &matcher);
-    segmenter.Update(input);
-    EXPECT_EQ(matcher.full_calls, 100 + 99);
-
-    // 10 components grow by 25% (a new revision): each alone grew past 15%, each edge's union
-    // (200 -> 225 points) by 12.5%.
-    for (int j = 0; j < 10; ++j) {
-      auto& c = input.components[static_cast<std::size_t>(10 * j)];
-      c.revision = 2;
-      c.num_points = 125;
-    }
-    matcher.ResetCounts();
-    const PostSegmentation grown = segmenter.Update(input);
-    EXPECT_EQ(matcher.component_calls, 10);  // M(c) stays keyed by revision
-    EXPECT_EQ(matcher.full_calls, fraction > 0.0 ? 10 : 10 + 19);
-    EXPECT_EQ(grown.objects.size(), 50u);
-
-    // They grow on to 160 points (revision 3): each union now 30% above what it was matched at.
-    for (int j = 0; j < 10; ++j) {
-      auto& c = input.components[static_cast<std::size_t>(10 * j)];
-      c.revision = 3;
-      c.num_points = 160;
-    }
-    matcher.ResetCounts();
-    segmenter.Update(input);
-    EXPECT_EQ(matcher.full_calls, 10 + 19);
-
-    // Nothing changes: nothing is matched.
-    matcher.ResetCounts();
-    segmenter.Update(input);
-    EXPECT_EQ(matcher.all_calls + matcher.full_calls, 0);
-  }
-  PostSegmenterOptions bad;
-  bad.group_rematch_growth_fraction = -0.1;
-  FakeMatcher matcher({});
-  EXPECT_THROW(PostSegmenter(bad, &matcher), ConfigError);
-}
-
 // Object merging asks for unions of adjacent objects; an unchanged input asks nothing the second time.
 TEST(PostSegmenterTest, ObjectMergingWarmStepQueriesNothingNew) {
   std::vector<FakeMatcher::TrueObject> objects;
@@ -638,8 +588,7 @@ TEST(PostSegmenterTest, OptionsListEveryField) {
   EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
                                             "split_instances", "graph_cuts", "smoothness", "smoothness_scale",
                                             "merge_min_gain", "gain_reference", "merge_objects",
-                                            "object_merge_min_gain", "object_merge_keep_larger_fit",
-                                            "group_rematch_growth_fraction", "alpha_expansion.max_sweeps",
+                                            "object_merge_min_gain", "object_merge_keep_larger_fit", "alpha_expansion.max_sweeps",
                                             "alpha_expansion.min_improvement"}));
 }
 
