@@ -11,6 +11,9 @@ namespace CLI {
 class App;
 class Option;
 }  // namespace CLI
+namespace objscan::recognition {
+struct CachedClassifierStatus;
+}  // namespace objscan::recognition
 
 namespace objscan::app {
 
@@ -47,6 +50,9 @@ std::string DefaultDatabasePathFor(const std::string& scene_spec, bool verbose);
 // recognition.classifier.extra_training_databases as files: the built-in databases it names
 // ("procedural", "sweethome3d") built on first use with progress, other names as they are.
 std::vector<std::string> TrainingDatabasePaths(const std::vector<std::string>& names, bool verbose);
+// One line on stderr when the category recognizer's cache file was damaged (and it was trained
+// again) and one when the trained recognizer could not be kept there; nothing when all went well.
+void ReportClassifierCache(const recognition::CachedClassifierStatus& status);
 
 // The memory limit of a model database in bytes (ModelDatabase::Load): recognition.max_database_memory_mb,
 // or when that is 0 the memory the machine has available now (MemAvailable; 0 = no limit when unknown).

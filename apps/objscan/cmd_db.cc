@@ -238,6 +238,7 @@ int RunEval(const DbArgs& a) {
   const recognition::DatabaseEvalResult r =
       recognition::EvaluateDatabase(db, queries, options, TerminalProgress("db eval"));
   FinishProgress();
+  ReportClassifierCache(r.classifier_cache);
   nlohmann::json j;
   j["top1_category_accuracy"] = r.top1_category_accuracy;
   j["top5_category_accuracy"] = r.top5_category_accuracy;

@@ -17,6 +17,7 @@
 #include "objscan/eval/run_evaluation.h"
 #include "objscan/eval/run_output.h"
 #include "objscan/io/atomic_file.h"
+#include "objscan/recognition/classifier_cache.h"
 #include "objscan/recognition/database_cache.h"
 #include "objscan/recognition/default_database.h"
 
@@ -61,6 +62,18 @@ std::vector<std::string> TrainingDatabasePaths(const std::vector<std::string>& n
       BuildNotice(verbose, "a built-in model database the category recognizer trains on"));
   FinishProgress();
   return paths;
+}
+
+void ReportClassifierCache(const recognition::CachedClassifierStatus& status) {
+  if (!status.damage.empty()) {
+    // The damage names the file.
+    std::fprintf(stderr, "objscan: the cached category recognizer is damaged, trained it again: %s\n",
+                 status.damage.c_str());
+  }
+  if (!status.write_error.empty()) {
+    std::fprintf(stderr, "objscan: could not keep the trained category recognizer in the cache: %s\n",
+                 status.write_error.c_str());
+  }
 }
 
 namespace {
@@ -187,6 +200,7 @@ int ScanAndWrite(const ScanRunInputs& in, platform::Platform* platform) {
   }
   scanning::RunRecord record = scanner.Run(progress);
   FinishProgress();
+  ReportClassifierCache(scanner.classifier_cache_status());
   if (frames) frames->Finish(record);
   eval::RunMetrics metrics;
   if (evaluator) {

@@ -123,6 +123,7 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
     const Stopwatch train;
     out.classifier_max_depth = recognizer.classifier().max_depth();  // trained once, before the queries
     out.classifier_train_s = train.ElapsedMs() / 1000.0;
+    out.classifier_cache = recognizer.classifier_cache_status();
   }
   const int workers = ResolveThreadCount(options.threads);
   VirtualScanOptions scan = options.scan;

@@ -8,6 +8,7 @@
 
 #include "objscan/common/config.h"
 #include "objscan/common/progress.h"
+#include "objscan/recognition/classifier_cache.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/recognition/recognizer.h"
@@ -70,6 +71,7 @@ struct DatabaseEvalResult {
   double ms_per_query = 0.0;            // describe + retrieve (+ align, objectness) per query
   double classifier_train_s = 0.0;      // training the category classifier on the database
   int classifier_max_depth = 0;         // the depth its forest was grown to (validation_depths' choice)
+  CachedClassifierStatus classifier_cache;  // how it came from the cache (Recognizer::classifier_cache_status)
   double classify_ms_per_query = 0.0;   // the classifier's features and posterior per query
   std::vector<ViewCountAccuracy> by_views;  // 1 and 3 views
   int objectness_models = 0;

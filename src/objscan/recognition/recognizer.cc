@@ -89,9 +89,9 @@ const CategoryClassifier& Recognizer::classifier() const {
     for (const ModelDatabase& db : extra) {
       if (!same_models(db, database_)) all.push_back(&db);
     }
-    classifier_ = options_.classifier.cache
-                      ? TrainOrLoadClassifier(all, options_.classifier, DefaultDatabaseCacheDir())
-                      : CategoryClassifier::Train(all, options_.classifier);
+    classifier_ = options_.classifier.cache ? TrainOrLoadClassifier(all, options_.classifier, DefaultDatabaseCacheDir(),
+                                                                    &classifier_cache_status_)
+                                            : CategoryClassifier::Train(all, options_.classifier);
   });
   return classifier_;
 }

@@ -13,6 +13,7 @@
 #include "objscan/recognition/alignment.h"
 #include "objscan/recognition/category_classifier.h"
 #include "objscan/recognition/category_naming.h"
+#include "objscan/recognition/classifier_cache.h"
 #include "objscan/recognition/descriptor.h"
 #include "objscan/recognition/model_database.h"
 #include "objscan/recognition/objectness.h"
@@ -202,6 +203,11 @@ class Recognizer {
   const RecognitionOptions& options() const { return options_; }
   // The category classifier, trained on the database's views on first use (then shared; thread-safe).
   const CategoryClassifier& classifier() const;
+  // How classifier() came by its classifier when recognition.classifier.cache is on: read from the
+  // cache file, or trained, and then why a damaged file was trained again and why the trained one
+  // could not be kept (the caller tells the user: the recognizer never prints). Valid once
+  // classifier() has returned; before that, or with the cache off, all empty (path "").
+  const CachedClassifierStatus& classifier_cache_status() const { return classifier_cache_status_; }
   // P(k | query) / max_j P(j | query) per world::CategoryId k from the classifier (empty for an
   // empty query): how much less likely than its first choice the classifier finds each category.
   // floor_z_m: the height of the floor under the query (world frame).
@@ -235,6 +241,7 @@ class Recognizer {
   std::vector<std::vector<float>> support_heights_;
   mutable std::once_flag classifier_once_;
   mutable CategoryClassifier classifier_;
+  mutable CachedClassifierStatus classifier_cache_status_;  // set in classifier()'s call_once
 };
 
 }  // namespace objscan::recognition

@@ -7,11 +7,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "objscan/common/error.h"
 #include "objscan/geometry/pose.h"
+#include "objscan/io/test_util.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/shape_database_suite.h"
 
@@ -349,6 +352,65 @@ TEST_F(RecognizerTest, ExtraTrainingDatabasesAddOtherModelsOnly) {
   EXPECT_NE(posterior({other}), alone);
   EXPECT_THROW(posterior({(dir / "missing.db").string()}), InputError);
   fs::remove_all(dir);
+}
+
+// Sets an environment variable for the scope of a test and puts the old value back.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    ::setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnv() { old_ ? ::setenv(name_, old_->c_str(), 1) : ::unsetenv(name_); }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+// The recognizer keeps how its classifier came from the cache ($OBJSCAN_CACHE_DIR): trained and
+// kept, then read back, then (the file cut short) trained again with the damage said, and a cache
+// that cannot be written says why; nothing before the classifier is first asked for.
+TEST_F(RecognizerTest, TheClassifierCacheStatusSaysWhatHappenedToTheCacheFile) {
+  io::testing::TempDir dir;
+  RecognitionOptions options;
+  options.classifier.extra_training_databases = {};
+  options.classifier.forest.num_trees = 8;
+  options.classifier.forest.threads = 1;
+  options.classifier.validation_depths = {};
+  auto status_of = [&](const std::string& cache_dir) {
+    const ScopedEnv env("OBJSCAN_CACHE_DIR", cache_dir);
+    const Recognizer r(*db_, options);
+    EXPECT_EQ(r.classifier_cache_status().path, "");
+    EXPECT_TRUE(r.classifier().trained());
+    return r.classifier_cache_status();
+  };
+  const std::string cache = dir.File("cache");
+  const CachedClassifierStatus trained = status_of(cache);
+  EXPECT_FALSE(trained.loaded);
+  EXPECT_EQ(trained.damage, "");
+  EXPECT_EQ(trained.write_error, "");
+  EXPECT_EQ(trained.path.rfind(cache + "/classifier-", 0), 0u) << trained.path;
+  ASSERT_TRUE(std::filesystem::exists(trained.path));
+  const CachedClassifierStatus loaded = status_of(cache);
+  EXPECT_TRUE(loaded.loaded);
+  EXPECT_EQ(loaded.path, trained.path);
+  EXPECT_EQ(loaded.damage, "");
+  std::filesystem::resize_file(trained.path, 100);
+  const CachedClassifierStatus damaged = status_of(cache);
+  EXPECT_FALSE(damaged.loaded);
+  EXPECT_NE(damaged.damage.find(trained.path + ": truncated category classifier"), std::string::npos)
+      << damaged.damage;
+  EXPECT_EQ(damaged.write_error, "");
+  EXPECT_TRUE(status_of(cache).loaded);  // replaced by the classifier trained again
+  io::testing::WriteText(dir.File("not-a-folder"), "x");
+  const CachedClassifierStatus unwritable = status_of(dir.File("not-a-folder"));
+  EXPECT_FALSE(unwritable.loaded);
+  EXPECT_EQ(unwritable.damage, "");
+  EXPECT_NE(unwritable.write_error.find(dir.File("not-a-folder")), std::string::npos) << unwritable.write_error;
+  // With the cache off there is no file to speak of.
+  options.classifier.cache = false;
+  EXPECT_EQ(status_of(cache).path, "");
 }
 
 // recognition.classifier_weight: the query carries the database-trained classifier's P(k) / max P,

@@ -1108,6 +1108,9 @@ Scanner::~Scanner() = default;
 void Scanner::set_frame_observer(FrameObserver observer) { state_->observer = std::move(observer); }
 void Scanner::set_analysis_observer(AnalysisObserver observer) { state_->analysis_observer = std::move(observer); }
 int Scanner::analysis_views() const { return state_->analysis_views; }
+const recognition::CachedClassifierStatus& Scanner::classifier_cache_status() const {
+  return state_->recognizer.classifier_cache_status();
+}
 
 void Scanner::AnalysisElementObjects(std::vector<int>* object_id) const {
   const State& s = *state_;

@@ -20,6 +20,9 @@
 namespace objscan::mapping {
 struct FrameAssociation;
 }  // namespace objscan::mapping
+namespace objscan::recognition {
+struct CachedClassifierStatus;
+}  // namespace objscan::recognition
 
 namespace objscan::scanning {
 
@@ -62,6 +65,10 @@ class Scanner {
   // post-segmented objects; -1 none), and the number of views that analysis saw.
   void AnalysisElementObjects(std::vector<int>* object_id) const;
   int analysis_views() const;
+  // How the recognizer's category classifier came from its cache (Recognizer::classifier_cache_status):
+  // all empty until the scan first asked the classifier, and with recognition.classifier.cache off.
+  // Read it between steps or after Run(), never while a step runs.
+  const recognition::CachedClassifierStatus& classifier_cache_status() const;
   // The robot's navigation map as a PNG (what the method believes, not ground truth): free white,
   // occupied black, unknown grey, cells the robot's centre cannot take (inflation) tinted red, its
   // path blue. Throws InputError naming the path when it cannot be written.
