@@ -22,6 +22,8 @@
 //   scannet        the files of a ScanNet scan folder, in this order, separated by a line "=====":
 //                  _vh_clean_2.ply, .aggregation.json, _vh_clean_2.0.010000.segs.json,
 //                  _vh_clean_2.labels.ply, .txt; an empty or absent part is a missing file.
+//   bag            the input is a ROS bag file (ros_bridge::ReadBag); every message's topic, type, time
+//                  and bytes are read.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -30,7 +32,7 @@
 
 namespace objscan::fuzz {
 
-enum class Target { kGazeboWorld, kSceneFile, kPly, kModelDatabase, kConfig, kScanNet };
+enum class Target { kGazeboWorld, kSceneFile, kPly, kModelDatabase, kConfig, kScanNet, kBag };
 
 // Name as used by scripts/fuzz.sh, fuzz/corpus/<name>/ and fuzz/regressions/<name>/.
 const char* TargetName(Target target);

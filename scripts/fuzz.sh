@@ -7,7 +7,7 @@
 #   scripts/fuzz.sh --all [EXECS]    every target in turn (what CI runs, with the default)
 #   scripts/fuzz.sh --build          build only
 #
-# Targets: gazebo_world scene_file ply model_database config scannet.
+# Targets: gazebo_world scene_file ply model_database config scannet bag.
 # Seeds: fuzz/corpus/TARGET/ (read only); what the fuzzer adds: build-sanitize/corpus/TARGET/;
 # a dictionary of the format's words, where there is one: fuzz/dict/TARGET.dict.
 # A crash, timeout or out-of-memory is written to build-sanitize/findings/TARGET/ and fails the script;
@@ -22,7 +22,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 build=${root}/build-sanitize
-targets=(gazebo_world scene_file ply model_database config scannet)
+targets=(gazebo_world scene_file ply model_database config scannet bag)
 jobs=${OBJSCAN_JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 usage() {
