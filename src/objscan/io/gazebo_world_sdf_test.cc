@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 
 #include "objscan/common/error.h"
@@ -18,6 +17,7 @@ namespace {
 using testing::ExpectInputError;
 using testing::TempDir;
 using testing::ByName;
+using testing::ScopedEnv;
 using testing::ExpectBox;
 using testing::WriteText;
 
@@ -94,20 +94,6 @@ std::string BookstoreWorld() {
                "<pose>-5 3 0.9 0 0 0</pose></include>\n",
                "1.6");
 }
-
-// Sets an environment variable for the scope of a test and puts the old value back.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::optional<std::string>& value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    value ? setenv(name, value->c_str(), 1) : unsetenv(name);
-  }
-  ~ScopedEnv() { old_ ? setenv(name_, old_->c_str(), 1) : unsetenv(name_); }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
 
 // No Gazebo path variable of the machine running the tests may change what they find.
 struct CleanGazeboEnv {

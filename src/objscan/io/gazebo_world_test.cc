@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 
 #include "objscan/common/error.h"
@@ -104,16 +103,13 @@ TEST(GazeboWorldTest, ModelUrisResolveWorldFolderFirstThenModelPathThenEnvironme
     body += Model(std::string(id) + "_0", "", "", "", "<mesh><uri>model://" + std::string(id) + "/" + id + ".obj</uri></mesh>");
   }
   WriteText(dir.File("scene/w.world"), World(body));
-  const char* old_objscan = std::getenv("OBJSCAN_MODEL_PATH");
-  const char* old_gazebo = std::getenv("GAZEBO_MODEL_PATH");
-  const std::string saved_objscan = old_objscan ? old_objscan : "", saved_gazebo = old_gazebo ? old_gazebo : "";
-  setenv("OBJSCAN_MODEL_PATH", (dir.File("nowhere") + ":" + dir.File("lib2")).c_str(), 1);
-  setenv("GAZEBO_MODEL_PATH", dir.File("lib3").c_str(), 1);
   SceneLoadOptions options;
   options.model_path = dir.File("empty") + ":" + dir.File("lib1");
-  const world::Scene scene = LoadGazeboWorld(dir.File("scene/w.world"), options);
-  old_objscan ? setenv("OBJSCAN_MODEL_PATH", saved_objscan.c_str(), 1) : unsetenv("OBJSCAN_MODEL_PATH");
-  old_gazebo ? setenv("GAZEBO_MODEL_PATH", saved_gazebo.c_str(), 1) : unsetenv("GAZEBO_MODEL_PATH");
+  const world::Scene scene = [&] {
+    const testing::ScopedEnv objscan_path("OBJSCAN_MODEL_PATH", dir.File("nowhere") + ":" + dir.File("lib2"));
+    const testing::ScopedEnv gazebo_path("GAZEBO_MODEL_PATH", dir.File("lib3"));
+    return LoadGazeboWorld(dir.File("scene/w.world"), options);
+  }();
   const double expected[] = {1.0, 2.0, 3.0, 4.0};
   const char* names[] = {"a_0", "b_0", "c_0", "d_0"};
   for (int i = 0; i < 4; ++i) {

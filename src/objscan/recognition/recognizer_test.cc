@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <string>
@@ -354,20 +353,6 @@ TEST_F(RecognizerTest, ExtraTrainingDatabasesAddOtherModelsOnly) {
   fs::remove_all(dir);
 }
 
-// Sets an environment variable for the scope of a test and puts the old value back.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::string& value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    ::setenv(name, value.c_str(), 1);
-  }
-  ~ScopedEnv() { old_ ? ::setenv(name_, old_->c_str(), 1) : ::unsetenv(name_); }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
 // The recognizer keeps how its classifier came from the cache ($OBJSCAN_CACHE_DIR): trained and
 // kept, then read back, then (the file cut short) trained again with the damage said, and a cache
 // that cannot be written says why; nothing before the classifier is first asked for.
@@ -379,7 +364,7 @@ TEST_F(RecognizerTest, TheClassifierCacheStatusSaysWhatHappenedToTheCacheFile) {
   options.classifier.forest.threads = 1;
   options.classifier.validation_depths = {};
   auto status_of = [&](const std::string& cache_dir) {
-    const ScopedEnv env("OBJSCAN_CACHE_DIR", cache_dir);
+    const io::testing::ScopedEnv env("OBJSCAN_CACHE_DIR", cache_dir);
     const Recognizer r(*db_, options);
     EXPECT_EQ(r.classifier_cache_status().path, "");
     EXPECT_TRUE(r.classifier().trained());
