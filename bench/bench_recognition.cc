@@ -51,7 +51,10 @@ const ModelDatabase& ScaledDatabase(int n) {
   for (int i = 0; i < n; ++i) {
     DatabaseEntry e = src[i % src.size()];
     if (i >= static_cast<int>(src.size())) {
-      e.kind = EntryKind::kFullModel;  // copies are full models so both scopes grow
+      // Copies are full models so both scopes grow (a full model holds its own points).
+      if (e.kind != EntryKind::kFullModel) e.points = base.EntryPoints(static_cast<int>(i % src.size()));
+      e.point_indices.clear();
+      e.kind = EntryKind::kFullModel;
       SparseHistogram h;
       for (const auto& b : e.bow) {
         if (rng.Bernoulli(0.8)) h.push_back({b.bin, b.value * static_cast<float>(rng.Uniform(0.5, 1.5))});

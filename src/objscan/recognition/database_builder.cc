@@ -151,17 +151,16 @@ PendingModel DescribeScan(const ModelScan& scan, world::Category category, const
     if (p.kind == EntryKind::kFullModel) {
       e.points = stored_points;
       e.normals = stored_normals;
+      for (const auto& q : e.points) e.bounds.Extend(q.cast<double>());
     } else {
       for (std::size_t k = 0; k < thinned.size(); ++k) {
         const std::int32_t label = surface.labels[thinned[k]];
         if (std::find(p.labels.begin(), p.labels.end(), label) != p.labels.end()) {
           e.point_indices.push_back(static_cast<std::int32_t>(k));
-          e.points.push_back(stored_points[k]);
-          e.normals.push_back(stored_normals[k]);
+          e.bounds.Extend(stored_points[k].cast<double>());
         }
       }
     }
-    for (const auto& q : e.points) e.bounds.Extend(q.cast<double>());
     first_keypoint.push_back(all_keypoints.size());
     all_keypoints.insert(all_keypoints.end(), e.keypoints.begin(), e.keypoints.end());
     result.entries.push_back(std::move(pe));
@@ -179,7 +178,7 @@ PendingModel DescribeScan(const ModelScan& scan, world::Category category, const
   }
   // Drop component/pair entries that ended up without stored points (all smaller than a store voxel).
   result.entries.erase(std::remove_if(result.entries.begin() + 1, result.entries.end(),
-                                      [](const PendingEntry& pe) { return pe.entry.points.empty(); }),
+                                      [](const PendingEntry& pe) { return pe.entry.point_indices.empty(); }),
                        result.entries.end());
   result.ok = true;
   return result;

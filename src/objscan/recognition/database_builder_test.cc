@@ -79,9 +79,19 @@ TEST(DatabaseBuilderTest, ProceduralModelsGiveFullModelsComponentsAndPairs) {
     } else {
       // Components and pairs are parts of their model's full scan.
       const DatabaseEntry& full = db.entries()[model.full_entry];
-      ASSERT_EQ(e.point_indices.size(), e.points.size());
-      for (std::size_t k = 0; k < e.points.size(); ++k) EXPECT_EQ(e.points[k], full.points[e.point_indices[k]]);
-      EXPECT_LT(e.points.size(), full.points.size());
+      // Components and pairs hold indices into it, not copies of its points.
+      EXPECT_TRUE(e.points.empty());
+      EXPECT_TRUE(e.normals.empty());
+      const std::vector<Eigen::Vector3f> points = db.EntryPoints(static_cast<int>(&e - db.entries().data()));
+      ASSERT_EQ(e.point_indices.size(), points.size());
+      geometry::Aabb3 bounds;
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        EXPECT_EQ(points[k], full.points[e.point_indices[k]]);
+        bounds.Extend(points[k].cast<double>());
+      }
+      EXPECT_LT(points.size(), full.points.size());
+      EXPECT_EQ(e.bounds.min_m, bounds.min_m);
+      EXPECT_EQ(e.bounds.max_m, bounds.max_m);
     }
   }
   EXPECT_TRUE(kinds.count(EntryKind::kFullModel));

@@ -121,11 +121,37 @@ void ModelDatabase::Verify(const std::string& path, std::uint64_t max_memory_byt
 }
 
 ModelDatabase ModelDatabase::Load(const std::string& path, std::uint64_t max_memory_bytes) {
-  const std::vector<char> bytes = ReadVerifiedFile(path, max_memory_bytes);
-  return FromPayload(bytes.data() + io::kBinaryHeaderSize, bytes.size() - io::kBinaryHeaderSize, path);
+  std::vector<char> bytes = ReadVerifiedFile(path, max_memory_bytes);
+  ModelDatabase db = Parse(bytes.data() + io::kBinaryHeaderSize, bytes.size() - io::kBinaryHeaderSize, path);
+  // The file's bytes are as large as the entries parsed from them: gone before the indices are built.
+  std::vector<char>().swap(bytes);
+  db.Finalize();
+  return db;
 }
 
 ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, const std::string& path) {
+  ModelDatabase db = Parse(payload, size, path);
+  db.Finalize();
+  return db;
+}
+
+std::vector<Eigen::Vector3f> ModelDatabase::EntryPoints(int entry) const {
+  if (entry < 0 || entry >= static_cast<int>(entries_.size())) return {};
+  const DatabaseEntry& e = entries_[static_cast<std::size_t>(entry)];
+  if (e.kind == EntryKind::kFullModel) return e.points;
+  std::vector<Eigen::Vector3f> points;
+  if (e.model_index < 0 || e.model_index >= static_cast<int>(models_.size())) return points;
+  const int full_entry = models_[static_cast<std::size_t>(e.model_index)].full_entry;
+  if (full_entry < 0 || full_entry >= static_cast<int>(entries_.size())) return points;
+  const std::vector<Eigen::Vector3f>& full = entries_[static_cast<std::size_t>(full_entry)].points;
+  points.reserve(e.point_indices.size());
+  for (const std::int32_t j : e.point_indices) {
+    if (j >= 0 && j < static_cast<std::int32_t>(full.size())) points.push_back(full[static_cast<std::size_t>(j)]);
+  }
+  return points;
+}
+
+ModelDatabase ModelDatabase::Parse(const char* payload, std::size_t size, const std::string& path) {
   Reader r(payload, size, path, kFormat.kind);
   ModelDatabase db;
   DatabaseSettings& s = db.settings_;
@@ -233,7 +259,7 @@ ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, 
     }
   }
   if (!r.AtEnd()) r.Fail("trailing data");
-  // Resolve models and materialise the points of components and pairs from their model's full scan.
+  // Resolve models, check the indices of components and pairs into their model's full scan.
   for (const auto& m : db.models_) {
     if (m.full_entry < 0 || m.full_entry >= static_cast<std::int32_t>(n_entries) ||
         db.entries_[m.full_entry].kind != EntryKind::kFullModel)
@@ -245,24 +271,19 @@ ModelDatabase ModelDatabase::FromPayload(const char* payload, std::size_t size, 
       continue;
     }
     const DatabaseEntry& full = db.entries_[db.models_[e.model_index].full_entry];
-    e.points.resize(e.point_indices.size());
-    e.normals.resize(e.point_indices.size());
-    for (std::size_t k = 0; k < e.point_indices.size(); ++k) {
-      const std::int32_t j = e.point_indices[k];
+    for (const std::int32_t j : e.point_indices) {
       if (j < 0 || j >= static_cast<std::int32_t>(full.points.size())) r.Fail("entry point index");
-      e.points[k] = full.points[j];
-      e.normals[k] = full.normals[j];
       e.bounds.Extend(full.points[j].cast<double>());
     }
   }
-  db.Finalize();
   return db;
 }
 
 void ModelDatabase::Finalize() {
-  for (auto& e : entries_) {
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    DatabaseEntry& e = entries_[i];
     if (e.bounds.Empty()) {
-      for (const auto& p : e.points) e.bounds.Extend(p.cast<double>());
+      for (const auto& p : EntryPoints(static_cast<int>(i))) e.bounds.Extend(p.cast<double>());
     }
   }
   std::vector<const SparseHistogram*> all_h, full_h;

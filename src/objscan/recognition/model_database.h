@@ -32,8 +32,11 @@ struct DatabaseEntry {
   world::Category category = world::Category::kOther;
   std::string name;                        // model name, "+/c<k>" for a component, "+/p<a>-<b>" for a pair
   std::int32_t model_index = -1;           // into ModelDatabase::models()
-  std::vector<Eigen::Vector3f> points;     // surface points in the model frame (Z up, on z = 0)
-  std::vector<Eigen::Vector3f> normals;    // one per point
+  // Full models: surface points in the model frame (Z up, on z = 0) and one normal per point.
+  // Components and pairs leave both empty: their points are the full entry's at `point_indices`
+  // (ModelDatabase::EntryPoints), so a loaded database holds each surface point once.
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> normals;
   std::vector<std::int32_t> point_indices; // components and pairs: indices of `points` in the model's full entry
   std::vector<Eigen::Vector3f> keypoints;  // n_p Lloyd keypoints
   std::vector<Eigen::Vector3f> keypoint_normals;  // unit, outward, one per keypoint
@@ -100,9 +103,10 @@ class ModelDatabase {
   // payload (and the memory limit). Cheap next to Load (one pass over the bytes); throws the same
   // InputError Load would for a truncated, extended or bit-flipped file.
   static void Verify(const std::string& path, std::uint64_t max_memory_bytes = 0);
-  // Memory of a loaded database per byte of its file, about: the points of components and pairs are
-  // stored as indices and expanded on load, and the indices and kd-trees are built (a 45 MB file
-  // took 180 MB).
+  // Memory of a loaded database per byte of its file, at most about: the file's bytes while it is
+  // parsed, then the inverted indices and the keypoints' kd-trees (the built-in real database, 190 MB
+  // on disk, reached 760 MB when components and pairs still copied their points out of the full
+  // entry; see EntryPoints).
   static constexpr std::uint64_t kMemoryPerFileByte = 4;
 
   DatabaseSettings& mutable_settings() { return settings_; }
@@ -113,6 +117,10 @@ class ModelDatabase {
   const std::vector<DatabaseModel>& models() const { return models_; }
   std::vector<DatabaseEntry>& mutable_entries() { return entries_; }
   const std::vector<DatabaseEntry>& entries() const { return entries_; }
+
+  // The surface points of an entry in the model frame: a full model's own, a component's or a pair's
+  // gathered from its model's full entry (empty for an index out of range).
+  std::vector<Eigen::Vector3f> EntryPoints(int entry) const;
 
   // Builds the inverted indices and per-entry alignment targets (their distance grids are built on
   // first use, never stored); call after changing entries (Load calls it).
@@ -134,6 +142,9 @@ class ModelDatabase {
   }
 
  private:
+  // FromPayload without Finalize, so that Load can free the file's bytes before building indices.
+  static ModelDatabase Parse(const char* payload, std::size_t size, const std::string& path);
+
   DatabaseSettings settings_;
   Vocabulary vocabulary_;
   std::vector<DatabaseModel> models_;

@@ -74,6 +74,32 @@ TEST_F(ModelDatabaseTest, HoldsFullModelsComponentsAndPairsWithTheModelsCategory
   for (const auto& m : db.models()) EXPECT_EQ(db.entries()[m.full_entry].kind, EntryKind::kFullModel);
 }
 
+TEST_F(ModelDatabaseTest, PartsGiveTheirPointsFromTheFullEntryWithoutCopies) {
+  const ModelDatabase& db = *db_;
+  int parts = 0;
+  for (std::size_t i = 0; i < db.entries().size(); ++i) {
+    const DatabaseEntry& e = db.entries()[i];
+    const std::vector<Eigen::Vector3f> points = db.EntryPoints(static_cast<int>(i));
+    if (e.kind == EntryKind::kFullModel) {
+      EXPECT_EQ(points, e.points);
+      continue;
+    }
+    ++parts;
+    EXPECT_TRUE(e.points.empty()) << e.name;
+    EXPECT_TRUE(e.normals.empty()) << e.name;
+    const DatabaseEntry& full = db.entries()[db.models()[e.model_index].full_entry];
+    ASSERT_EQ(points.size(), e.point_indices.size()) << e.name;
+    for (std::size_t k = 0; k < points.size(); ++k) EXPECT_EQ(points[k], full.points[e.point_indices[k]]);
+    // A pair is its two components: the table's top and a leg span the height of the table.
+    if (e.kind == EntryKind::kPair) {
+      EXPECT_GT(e.bounds.max_m.z() - e.bounds.min_m.z(), 0.6) << e.name;
+    }
+  }
+  EXPECT_EQ(parts, 9);
+  EXPECT_TRUE(db.EntryPoints(-1).empty());
+  EXPECT_TRUE(db.EntryPoints(static_cast<int>(db.entries().size())).empty());
+}
+
 TEST_F(ModelDatabaseTest, SaveLoadRoundTrip) {
   const fs::path path = dir_ / "shapes.db";
   db_->Save(path.string());
@@ -90,8 +116,12 @@ TEST_F(ModelDatabaseTest, SaveLoadRoundTrip) {
     EXPECT_EQ(a.category, b.category);
     EXPECT_EQ(a.name, b.name);
     EXPECT_EQ(a.keypoints, b.keypoints);
-    EXPECT_EQ(a.points, b.points);  // components re-materialised from their model's full scan
+    EXPECT_EQ(a.points, b.points);
     EXPECT_EQ(a.normals, b.normals);
+    EXPECT_EQ(a.point_indices, b.point_indices);
+    EXPECT_EQ(loaded.EntryPoints(static_cast<int>(i)), db_->EntryPoints(static_cast<int>(i)));
+    EXPECT_EQ(a.bounds.min_m, b.bounds.min_m);
+    EXPECT_EQ(a.bounds.max_m, b.bounds.max_m);
     ASSERT_EQ(a.bow.size(), b.bow.size());
     for (std::size_t k = 0; k < a.bow.size(); ++k) {
       EXPECT_EQ(a.bow[k].bin, b.bow[k].bin);

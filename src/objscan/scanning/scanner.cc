@@ -377,11 +377,9 @@ struct Scanner::State {
 
   // The points of m's database entry placed by m.T_world_model (none for a match without an entry).
   std::vector<Eigen::Vector3f> PlacedModelPoints(const segmentation::ModelMatch& m) const {
-    std::vector<Eigen::Vector3f> points;
-    const recognition::DatabaseEntry* entry = EntryOf(m);
-    if (entry == nullptr) return points;
-    points.reserve(entry->points.size());
-    for (const auto& p : entry->points) points.push_back((m.T_world_model * p.cast<double>()).cast<float>());
+    if (EntryOf(m) == nullptr) return {};
+    std::vector<Eigen::Vector3f> points = database.EntryPoints(m.entry_id);
+    for (auto& p : points) p = (m.T_world_model * p.cast<double>()).cast<float>();
     return points;
   }
 
@@ -877,9 +875,8 @@ struct Scanner::State {
       return n;
     }
     std::string ModelName(int model_id) const override { return s_.ModelName(model_id); }
-    const std::vector<Eigen::Vector3f>* EntryPoints(int entry_id) const override {
-      if (entry_id < 0 || entry_id >= static_cast<int>(s_.database.entries().size())) return nullptr;
-      return &s_.database.entries()[static_cast<std::size_t>(entry_id)].points;
+    std::vector<Eigen::Vector3f> EntryPoints(int entry_id) const override {
+      return s_.database.EntryPoints(entry_id);
     }
     std::vector<float> CategoryOdds(const std::vector<std::int32_t>& labels) override {
       return s_.matcher.CategoryOdds(labels);

@@ -25,13 +25,13 @@ std::vector<int> AbsorbExplainedFragments(const std::vector<FragmentCandidate>& 
   const float max_d2 = static_cast<float>(options.distance_m * options.distance_m);
   for (int h : order) {
     const FragmentCandidate& H = objects[h];
-    if (host[h] != h || H.model_points == nullptr || H.model_points->empty() ||
+    if (host[h] != h || H.model_points.empty() ||
         H.objectness < options.min_host_objectness) {
       continue;
     }
     // The model's box in the model frame, grown by the distance: points outside it cannot lie on it.
     geometry::Aabb3 model_box;
-    for (const auto& p : *H.model_points) model_box.Extend(p.cast<double>());
+    for (const auto& p : H.model_points) model_box.Extend(p.cast<double>());
     const geometry::Pose3 T_model_world = H.T_world_model.inverse();
     recognition::KdTree3 tree;  // over the model's points, built when a fragment first comes near
     for (int f : order) {
@@ -46,7 +46,7 @@ std::vector<int> AbsorbExplainedFragments(const std::vector<FragmentCandidate>& 
         const Eigen::Vector3d p = T_model_world * p_world.cast<double>();
         bool on_surface = false;
         if (model_box.Contains(p, options.distance_m)) {
-          if (tree.empty()) tree.Build(*H.model_points);
+          if (tree.empty()) tree.Build(H.model_points);
           float d2 = 0.f;
           tree.Nearest(p.cast<float>(), &d2);
           on_surface = d2 <= max_d2;

@@ -39,8 +39,8 @@ struct FragmentCandidate {
   std::vector<Eigen::Vector3f> points_world;   // the object's map points (may be empty for a host)
   std::size_t num_points = 0;                  // its size (for the size ratio); points_world.size() if 0
   double objectness = 0.0;
-  // Its best full model's surface points in the model frame and the model's pose; null = no model.
-  const std::vector<Eigen::Vector3f>* model_points = nullptr;
+  // Its best full model's surface points in the model frame and the model's pose; empty = no model.
+  std::vector<Eigen::Vector3f> model_points;
   geometry::Pose3 T_world_model = geometry::Pose3::Identity();
   bool may_be_absorbed = true;                 // false for objects already replaced by their model
 };

@@ -47,7 +47,7 @@ class FragmentAbsorptionTest : public ::testing::Test {
       if (p.z() < 0.49f) host.points_world.push_back((T_world_model_ * (p + Eigen::Vector3f(0, 0, 0.01f)).cast<double>()).cast<float>());
     }
     host.objectness = 0.9;
-    host.model_points = &model_;
+    host.model_points = model_;
     host.T_world_model = T_world_model_;
     objects_.push_back(host);
     // A fragment: a 30 x 30 cm patch of the model's top, 2 cm above it.

@@ -12,14 +12,14 @@ void ReopenOutgrownRule::Apply(const ReportContext& context, ReportedObjects* ob
   for (std::size_t i = 0; i < objects->size(); ++i) {
     const ReportedObject& o = (*objects)[i];
     if (!o.reported() || !o.record.complete) continue;
-    const std::vector<Eigen::Vector3f>* model_points = context.sources->EntryPoints(o.model_entry);
+    const std::vector<Eigen::Vector3f> model_points = context.sources->EntryPoints(o.model_entry);
     // A door model fits any flat face; what was seen of a door leaf lies in a thin slab.
     const bool check_door = o.record.category == world::Category::kDoor;
-    if (model_points == nullptr && !check_door) continue;
+    if (model_points.empty() && !check_door) continue;
     std::vector<Eigen::Vector3f> seen = context.sources->ComponentPoints(o.record.labels);
     bool reopen = check_door && TooDeepForADoor(seen, doors_);
-    if (!reopen && model_points != nullptr) {
-      reopen = ShareOutsideModelBox(seen, *model_points, o.record.T_world_model, options_.margin_m) >
+    if (!reopen && !model_points.empty()) {
+      reopen = ShareOutsideModelBox(seen, model_points, o.record.T_world_model, options_.margin_m) >
                options_.max_outside_share;
     }
     if (!reopen) continue;

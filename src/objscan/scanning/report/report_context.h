@@ -36,8 +36,8 @@ class ReportSources {
   virtual std::size_t ElementCount(const std::vector<std::int32_t>& labels) const = 0;
   // The database model's name ("" for model_id < 0).
   virtual std::string ModelName(int model_id) const = 0;
-  // A database entry's points in its model frame (null for none).
-  virtual const std::vector<Eigen::Vector3f>* EntryPoints(int entry_id) const = 0;
+  // A database entry's points in its model frame (empty for none).
+  virtual std::vector<Eigen::Vector3f> EntryPoints(int entry_id) const = 0;
   // The category classifier's odds for the union, P(k) / max_j P(j) per world::CategoryId k
   // (recognition::Recognizer::CategoryOdds); empty when there is no classifier or no description.
   virtual std::vector<float> CategoryOdds(const std::vector<std::int32_t>& /*labels*/) { return {}; }

@@ -85,9 +85,9 @@ class FakeSources : public ReportSources {
     return ComponentPoints(labels).size();
   }
   std::string ModelName(int model_id) const override { return model_id >= 0 ? "m" + std::to_string(model_id) : ""; }
-  const Points* EntryPoints(int entry_id) const override {
+  Points EntryPoints(int entry_id) const override {
     auto it = entries.find(entry_id);
-    return it == entries.end() ? nullptr : &it->second;
+    return it == entries.end() ? Points() : it->second;
   }
 };
 
