@@ -66,6 +66,45 @@ void CheckPlyData(const std::string& path, const PlyData& data) {
 
 }  // namespace
 
+namespace {
+
+// The file goes out in chunks of about this size: a scene's map is tens of MB, which need not sit
+// in memory a second time at the end of a run, when the map is at its largest.
+constexpr std::size_t kPlyChunkBytes = std::size_t{1} << 20;
+
+// An AtomicFile written through a buffer that is flushed whenever it passes kPlyChunkBytes.
+class ChunkedAtomicOutput {
+ public:
+  explicit ChunkedAtomicOutput(const std::string& path) : file_(path) {
+    out_.open(file_.temp_path(), std::ios::binary | std::ios::trunc);
+    if (!out_) throw InputError(path + ": cannot write (cannot create file)");
+    buffer_.reserve(kPlyChunkBytes + 4096);
+  }
+  std::string& buffer() { return buffer_; }
+  void MaybeFlush() {
+    if (buffer_.size() >= kPlyChunkBytes) Flush();
+  }
+  void Commit() {
+    Flush();
+    out_.flush();
+    out_.close();
+    if (!out_) throw InputError(file_.path() + ": write failed");
+    file_.Commit();
+  }
+
+ private:
+  void Flush() {
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    if (!out_) throw InputError(file_.path() + ": write failed");
+    buffer_.clear();
+  }
+  AtomicFile file_;
+  std::ofstream out_;
+  std::string buffer_;
+};
+
+}  // namespace
+
 void WritePly(const std::string& path, const PlyData& data, bool binary) {
   static_assert(sizeof(float) == 4 && sizeof(std::int32_t) == 4, "PLY writer assumes 32-bit float/int");
   {
@@ -79,7 +118,8 @@ void WritePly(const std::string& path, const PlyData& data, bool binary) {
   const bool has_normals = !data.normals.empty();
   const bool has_colors = !data.colors.empty();
 
-  std::string out;
+  ChunkedAtomicOutput sink(path);
+  std::string& out = sink.buffer();
   out += "ply\n";
   out += binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
   out += "comment written by objscan\n";
@@ -98,9 +138,8 @@ void WritePly(const std::string& path, const PlyData& data, bool binary) {
   out += "end_header\n";
 
   if (binary) {
-    std::size_t vertex_bytes = 12 + (has_normals ? 12 : 0) + (has_colors ? 3 : 0) + 4 * data.int_properties.size();
-    out.reserve(out.size() + n * vertex_bytes + data.triangles.size() * 13);
     for (std::size_t i = 0; i < n; ++i) {
+      sink.MaybeFlush();
       for (int k = 0; k < 3; ++k) AppendRaw(&out, data.points[i][k]);
       if (has_normals) {
         for (int k = 0; k < 3; ++k) AppendRaw(&out, data.normals[i][k]);
@@ -109,11 +148,13 @@ void WritePly(const std::string& path, const PlyData& data, bool binary) {
       for (const auto& prop : data.int_properties) AppendRaw(&out, prop.second[i]);
     }
     for (const auto& t : data.triangles) {
+      sink.MaybeFlush();
       AppendRaw(&out, static_cast<std::uint8_t>(3));
       for (int k = 0; k < 3; ++k) AppendRaw(&out, static_cast<std::int32_t>(t[k]));
     }
   } else {
     for (std::size_t i = 0; i < n; ++i) {
+      sink.MaybeFlush();
       for (int k = 0; k < 3; ++k) {
         if (k > 0) out += ' ';
         AppendFloatText(&out, data.points[i][k]);
@@ -131,10 +172,11 @@ void WritePly(const std::string& path, const PlyData& data, bool binary) {
       out += '\n';
     }
     for (const auto& t : data.triangles) {
+      sink.MaybeFlush();
       out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
     }
   }
-  WriteFileAtomically(path, out);
+  sink.Commit();
 }
 
 // ---------------------------------------------------------------- reading

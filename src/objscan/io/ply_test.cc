@@ -203,5 +203,42 @@ TEST(PlyTest, InconsistentDataIsRejectedAndLeavesNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
+TEST(PlyTest, FilesLargerThanAWriteChunkRoundTripWhole) {
+  // 200k vertices with every property and 100k triangles: several megabytes in either encoding, so
+  // the writer flushes its buffer many times, in the middle of vertices and of faces.
+  PlyData d;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    d.points.emplace_back(1e-3f * static_cast<float>(i), -0.5f * static_cast<float>(i % 7), 1.0f / static_cast<float>(i + 1));
+    d.normals.emplace_back(0.f, static_cast<float>(i % 2), static_cast<float>(1 - i % 2));
+    d.colors.push_back({static_cast<std::uint8_t>(i % 256), 7, static_cast<std::uint8_t>((i / 256) % 256)});
+  }
+  std::vector<std::int32_t> ids(n);
+  for (int i = 0; i < n; ++i) ids[i] = i * 13 - 5;
+  d.int_properties.push_back({"object_id", ids});
+  for (int i = 0; i + 2 < n; i += 2) d.triangles.emplace_back(i, i + 1, i + 2);
+  TempDir dir;
+  for (const bool binary : {true, false}) {
+    const std::string path = dir.File(binary ? "big_b.ply" : "big_a.ply");
+    WritePly(path, d, binary);
+    EXPECT_GT(std::filesystem::file_size(path), std::uintmax_t{4} << 20);
+    ExpectSame(d, ReadPly(path));
+  }
+  // Only the two files: no temporary left beside them.
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 2);
+}
+
+TEST(PlyTest, AFolderThatCannotBeWrittenNamesTheFileAndLeavesNothing) {
+  TempDir dir;
+  const std::string blocker = dir.File("not_a_folder");
+  WritePly(blocker, MakeSample());  // a file where the folder should be
+  ExpectInputError([&] { WritePly(blocker + "/x.ply", MakeSample()); }, "not_a_folder/x.ply");
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
 }  // namespace
 }  // namespace objscan::io

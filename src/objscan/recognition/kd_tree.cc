@@ -9,6 +9,13 @@
 namespace objscan::recognition {
 namespace {
 constexpr int kLeafSize = 12;
+
+// Nodes BuildNode makes for n points (at most: coincident points stop a split early). A database
+// holds ten thousand trees, so the node array is allocated once at its size, not grown by doubling.
+std::size_t NodeCount(std::size_t n) {
+  if (n <= static_cast<std::size_t>(kLeafSize)) return 1;
+  return 1 + NodeCount(n / 2) + NodeCount(n - n / 2);
+}
 }  // namespace
 
 void KdTree3::Build(const std::vector<Eigen::Vector3f>& points) {
@@ -16,7 +23,7 @@ void KdTree3::Build(const std::vector<Eigen::Vector3f>& points) {
   order_.resize(points_.size());
   std::iota(order_.begin(), order_.end(), 0);
   nodes_.clear();
-  nodes_.reserve(2 * points_.size() / kLeafSize + 2);
+  nodes_.reserve(points_.empty() ? 0 : NodeCount(points_.size()));
   if (!points_.empty()) BuildNode(0, static_cast<int>(points_.size()));
   ordered_.resize(points_.size());
   for (std::size_t i = 0; i < order_.size(); ++i) ordered_[i] = points_[order_[i]];
