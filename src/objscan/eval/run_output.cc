@@ -372,6 +372,37 @@ io::PlyData PlacedModelsPly(const scanning::RunRecord& record, const recognition
   return models;
 }
 
+namespace {
+
+// scene.ply: the reconstructed surface with object and category ids, coloured by category, with
+// the `label` and `instance` fields viewers and other tools look for (io::AddCategoryLabels' fields).
+// Written an element at a time: a house's map has millions of elements, which took about 190 MB
+// more as a PlyData at the end of the run.
+void WriteScenePly(const std::string& path, const scanning::Scanner& scanner) {
+  const mapping::SurfaceMap& map = scanner.surface_map();
+  std::vector<int> object_id, category_id;
+  scanner.ElementObjects(&object_id, &category_id);
+  if (object_id.size() != map.size() || category_id.size() != map.size()) {
+    throw InputError(path + ": " + std::to_string(object_id.size()) + " object ids for " + std::to_string(map.size()) +
+                     " map elements");
+  }
+  io::PlyLayout layout;
+  layout.num_vertices = map.size();
+  layout.normals = true;
+  layout.colors = true;
+  layout.int_properties = {"object_id", "category_id", "label", "instance"};
+  layout.comments = io::CategoryPlyComments();
+  io::PlyStreamWriter writer(path, std::move(layout));
+  for (std::size_t e = 0; e < map.size(); ++e) {
+    const auto c = world::LabelColor(category_id[e]);
+    const std::int32_t ints[4] = {object_id[e], category_id[e], category_id[e], object_id[e]};
+    writer.AddVertex(map.position(e), map.normal(e), {c[0], c[1], c[2]}, ints);
+  }
+  writer.Commit();
+}
+
+}  // namespace
+
 void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -384,24 +415,7 @@ void WriteRunOutputs(const std::string& out_dir, const RunOutputInputs& in) {
   fs::remove(dir / "run.json", ec);
   if (ec) throw InputError((dir / "run.json").string() + ": cannot replace: " + ec.message());
 
-  // scene.ply: the reconstructed surface with object and category ids.
-  const mapping::SurfaceMap& map = in.scanner->surface_map();
-  std::vector<int> object_id, category_id;
-  in.scanner->ElementObjects(&object_id, &category_id);
-  io::PlyData scene;
-  scene.points.reserve(map.size());
-  scene.normals.reserve(map.size());
-  for (std::size_t e = 0; e < map.size(); ++e) {
-    scene.points.push_back(map.position(e));
-    scene.normals.push_back(map.normal(e));
-  }
-  const std::vector<std::int32_t> scene_object(object_id.begin(), object_id.end());
-  const std::vector<std::int32_t> scene_category(category_id.begin(), category_id.end());
-  scene.int_properties.emplace_back("object_id", scene_object);
-  scene.int_properties.emplace_back("category_id", scene_category);
-  // Coloured by category with `label` and `instance`, the fields viewers and other tools look for.
-  io::AddCategoryLabels(scene_category, &scene_object, /*colour_by_category=*/true, &scene);
-  io::WritePly((dir / "scene.ply").string(), scene);
+  WriteScenePly((dir / "scene.ply").string(), *in.scanner);
 
   // models.ply: the database models that replaced complete objects, placed.
   const io::PlyData models = PlacedModelsPly(*in.record, *in.database, in.warn);

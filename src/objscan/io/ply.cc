@@ -44,18 +44,29 @@ void CheckPlyData(const std::string& path, const PlyData& data) {
       throw InputError(path + ": cannot write PLY: property '" + name + "' has " + std::to_string(values.size()) +
                        " values for " + std::to_string(n) + " points");
     }
+  }
+  // Face indices are checked as the faces are written (PlyStreamWriter::AddTriangle).
+}
+
+// The file goes out in chunks of about this size: a scene's map is tens of MB, which need not sit
+// in memory a second time at the end of a run, when the map is at its largest.
+constexpr std::size_t kPlyChunkBytes = std::size_t{1} << 20;
+
+void CheckLittleEndian(const std::string& path) {
+  static_assert(sizeof(float) == 4 && sizeof(std::int32_t) == 4, "PLY writer assumes 32-bit float/int");
+  const std::uint16_t probe = 1;
+  unsigned char first = 0;
+  std::memcpy(&first, &probe, 1);
+  if (first != 1) throw InputError(path + ": binary PLY writing needs a little-endian host");
+}
+
+void CheckLayout(const std::string& path, const PlyLayout& layout) {
+  for (const auto& name : layout.int_properties) {
     if (name.empty() || name.find_first_of(" \t\r\n") != std::string::npos) {
       throw InputError(path + ": cannot write PLY: bad property name '" + name + "'");
     }
   }
-  for (const auto& t : data.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      if (t[k] < 0 || static_cast<std::size_t>(t[k]) >= n) {
-        throw InputError(path + ": cannot write PLY: triangle index " + std::to_string(t[k]) + " out of range");
-      }
-    }
-  }
-  for (const auto& comment : data.comments) {
+  for (const auto& comment : layout.comments) {
     // A line break would end the comment and start a header line readers reject.
     if (comment.find_first_of("\r\n") != std::string::npos) {
       throw InputError(path + ": cannot write PLY: a header comment spans lines (starts '" +
@@ -66,117 +77,151 @@ void CheckPlyData(const std::string& path, const PlyData& data) {
 
 }  // namespace
 
-namespace {
+struct PlyStreamWriter::Impl {
+  Impl(const std::string& path, PlyLayout l) : layout(std::move(l)), file(path) {}
+  PlyLayout layout;
+  AtomicFile file;
+  std::ofstream out;
+  std::string buffer;
+  std::size_t vertices = 0, triangles = 0;
 
-// The file goes out in chunks of about this size: a scene's map is tens of MB, which need not sit
-// in memory a second time at the end of a run, when the map is at its largest.
-constexpr std::size_t kPlyChunkBytes = std::size_t{1} << 20;
-
-// An AtomicFile written through a buffer that is flushed whenever it passes kPlyChunkBytes.
-class ChunkedAtomicOutput {
- public:
-  explicit ChunkedAtomicOutput(const std::string& path) : file_(path) {
-    out_.open(file_.temp_path(), std::ios::binary | std::ios::trunc);
-    if (!out_) throw InputError(path + ": cannot write (cannot create file)");
-    buffer_.reserve(kPlyChunkBytes + 4096);
-  }
-  std::string& buffer() { return buffer_; }
-  void MaybeFlush() {
-    if (buffer_.size() >= kPlyChunkBytes) Flush();
-  }
-  void Commit() {
-    Flush();
-    out_.flush();
-    out_.close();
-    if (!out_) throw InputError(file_.path() + ": write failed");
-    file_.Commit();
-  }
-
- private:
   void Flush() {
-    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-    if (!out_) throw InputError(file_.path() + ": write failed");
-    buffer_.clear();
+    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    if (!out) throw InputError(file.path() + ": write failed");
+    buffer.clear();
   }
-  AtomicFile file_;
-  std::ofstream out_;
-  std::string buffer_;
+  void MaybeFlush() {
+    if (buffer.size() >= kPlyChunkBytes) Flush();
+  }
 };
 
-}  // namespace
-
-void WritePly(const std::string& path, const PlyData& data, bool binary) {
-  static_assert(sizeof(float) == 4 && sizeof(std::int32_t) == 4, "PLY writer assumes 32-bit float/int");
-  {
-    const std::uint16_t probe = 1;
-    unsigned char first = 0;
-    std::memcpy(&first, &probe, 1);
-    if (first != 1) throw InputError(path + ": binary PLY writing needs a little-endian host");
-  }
-  CheckPlyData(path, data);
-  const std::size_t n = data.points.size();
-  const bool has_normals = !data.normals.empty();
-  const bool has_colors = !data.colors.empty();
-
-  ChunkedAtomicOutput sink(path);
-  std::string& out = sink.buffer();
+PlyStreamWriter::PlyStreamWriter(const std::string& path, PlyLayout layout) {
+  CheckLittleEndian(path);
+  CheckLayout(path, layout);
+  impl_ = std::make_unique<Impl>(path, std::move(layout));
+  Impl& w = *impl_;
+  const PlyLayout& l = w.layout;
+  w.out.open(w.file.temp_path(), std::ios::binary | std::ios::trunc);
+  if (!w.out) throw InputError(path + ": cannot write (cannot create file)");
+  w.buffer.reserve(kPlyChunkBytes + 4096);
+  std::string& out = w.buffer;
   out += "ply\n";
-  out += binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
+  out += l.binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
   out += "comment written by objscan\n";
-  for (const auto& comment : data.comments) {
+  for (const auto& comment : l.comments) {
     if (comment != "written by objscan") out += "comment " + comment + "\n";  // a file read back keeps one
   }
-  out += "element vertex " + std::to_string(n) + "\n";
+  out += "element vertex " + std::to_string(l.num_vertices) + "\n";
   out += "property float x\nproperty float y\nproperty float z\n";
-  if (has_normals) out += "property float nx\nproperty float ny\nproperty float nz\n";
-  if (has_colors) out += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-  for (const auto& prop : data.int_properties) out += "property int " + prop.first + "\n";
-  if (!data.triangles.empty()) {
-    out += "element face " + std::to_string(data.triangles.size()) + "\n";
+  if (l.normals) out += "property float nx\nproperty float ny\nproperty float nz\n";
+  if (l.colors) out += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  for (const auto& name : l.int_properties) out += "property int " + name + "\n";
+  if (l.num_triangles > 0) {
+    out += "element face " + std::to_string(l.num_triangles) + "\n";
     out += "property list uchar int vertex_indices\n";
   }
   out += "end_header\n";
+}
 
-  if (binary) {
-    for (std::size_t i = 0; i < n; ++i) {
-      sink.MaybeFlush();
-      for (int k = 0; k < 3; ++k) AppendRaw(&out, data.points[i][k]);
-      if (has_normals) {
-        for (int k = 0; k < 3; ++k) AppendRaw(&out, data.normals[i][k]);
-      }
-      if (has_colors) out.append(reinterpret_cast<const char*>(data.colors[i].data()), 3);
-      for (const auto& prop : data.int_properties) AppendRaw(&out, prop.second[i]);
+PlyStreamWriter::~PlyStreamWriter() = default;
+
+void PlyStreamWriter::AddVertex(const Eigen::Vector3f& point, const Eigen::Vector3f& normal,
+                                const std::array<std::uint8_t, 3>& color, const std::int32_t* ints) {
+  Impl& w = *impl_;
+  const PlyLayout& l = w.layout;
+  if (w.vertices == l.num_vertices || w.triangles > 0) {
+    throw InputError(w.file.path() + ": cannot write PLY: more than the " + std::to_string(l.num_vertices) +
+                     " vertices announced, or a vertex after the faces");
+  }
+  ++w.vertices;
+  w.MaybeFlush();
+  std::string& out = w.buffer;
+  const std::size_t n_ints = l.int_properties.size();
+  if (l.binary) {
+    for (int k = 0; k < 3; ++k) AppendRaw(&out, point[k]);
+    if (l.normals) {
+      for (int k = 0; k < 3; ++k) AppendRaw(&out, normal[k]);
     }
-    for (const auto& t : data.triangles) {
-      sink.MaybeFlush();
-      AppendRaw(&out, static_cast<std::uint8_t>(3));
-      for (int k = 0; k < 3; ++k) AppendRaw(&out, static_cast<std::int32_t>(t[k]));
-    }
-  } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      sink.MaybeFlush();
-      for (int k = 0; k < 3; ++k) {
-        if (k > 0) out += ' ';
-        AppendFloatText(&out, data.points[i][k]);
-      }
-      if (has_normals) {
-        for (int k = 0; k < 3; ++k) {
-          out += ' ';
-          AppendFloatText(&out, data.normals[i][k]);
-        }
-      }
-      if (has_colors) {
-        for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(static_cast<int>(data.colors[i][k]));
-      }
-      for (const auto& prop : data.int_properties) out += ' ' + std::to_string(prop.second[i]);
-      out += '\n';
-    }
-    for (const auto& t : data.triangles) {
-      sink.MaybeFlush();
-      out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+    if (l.colors) out.append(reinterpret_cast<const char*>(color.data()), 3);
+    for (std::size_t k = 0; k < n_ints; ++k) AppendRaw(&out, ints[k]);
+    return;
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (k > 0) out += ' ';
+    AppendFloatText(&out, point[k]);
+  }
+  if (l.normals) {
+    for (int k = 0; k < 3; ++k) {
+      out += ' ';
+      AppendFloatText(&out, normal[k]);
     }
   }
-  sink.Commit();
+  if (l.colors) {
+    for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(static_cast<int>(color[k]));
+  }
+  for (std::size_t k = 0; k < n_ints; ++k) out += ' ' + std::to_string(ints[k]);
+  out += '\n';
+}
+
+void PlyStreamWriter::AddTriangle(const Eigen::Vector3i& t) {
+  Impl& w = *impl_;
+  const PlyLayout& l = w.layout;
+  if (w.vertices != l.num_vertices || w.triangles == l.num_triangles) {
+    throw InputError(w.file.path() + ": cannot write PLY: a face before the " + std::to_string(l.num_vertices) +
+                     " vertices, or more than the " + std::to_string(l.num_triangles) + " faces announced");
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (t[k] < 0 || static_cast<std::size_t>(t[k]) >= l.num_vertices) {
+      throw InputError(w.file.path() + ": cannot write PLY: triangle index " + std::to_string(t[k]) + " out of range");
+    }
+  }
+  ++w.triangles;
+  w.MaybeFlush();
+  std::string& out = w.buffer;
+  if (l.binary) {
+    AppendRaw(&out, static_cast<std::uint8_t>(3));
+    for (int k = 0; k < 3; ++k) AppendRaw(&out, static_cast<std::int32_t>(t[k]));
+  } else {
+    out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+  }
+}
+
+void PlyStreamWriter::Commit() {
+  Impl& w = *impl_;
+  if (w.vertices != w.layout.num_vertices || w.triangles != w.layout.num_triangles) {
+    throw InputError(w.file.path() + ": cannot write PLY: " + std::to_string(w.vertices) + " of " +
+                     std::to_string(w.layout.num_vertices) + " vertices and " + std::to_string(w.triangles) + " of " +
+                     std::to_string(w.layout.num_triangles) + " faces given");
+  }
+  w.Flush();
+  w.out.flush();
+  w.out.close();
+  if (!w.out) throw InputError(w.file.path() + ": write failed");
+  w.file.Commit();
+}
+
+void WritePly(const std::string& path, const PlyData& data, bool binary) {
+  CheckLittleEndian(path);
+  CheckPlyData(path, data);
+  PlyLayout layout;
+  layout.num_vertices = data.points.size();
+  layout.normals = !data.normals.empty();
+  layout.colors = !data.colors.empty();
+  for (const auto& prop : data.int_properties) layout.int_properties.push_back(prop.first);
+  layout.num_triangles = data.triangles.size();
+  layout.comments = data.comments;
+  layout.binary = binary;
+  PlyStreamWriter writer(path, std::move(layout));
+  const Eigen::Vector3f no_normal = Eigen::Vector3f::Zero();
+  const std::array<std::uint8_t, 3> no_color = {0, 0, 0};
+  std::vector<std::int32_t> ints(data.int_properties.size());
+  for (std::size_t i = 0; i < data.points.size(); ++i) {
+    for (std::size_t k = 0; k < ints.size(); ++k) ints[k] = data.int_properties[k].second[i];
+    writer.AddVertex(data.points[i], data.normals.empty() ? no_normal : data.normals[i],
+                     data.colors.empty() ? no_color : data.colors[i], ints.data());
+  }
+  for (const auto& t : data.triangles) writer.AddTriangle(t);
+  writer.Commit();
 }
 
 // ---------------------------------------------------------------- reading

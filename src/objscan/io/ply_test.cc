@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "objscan/common/error.h"
 #include "objscan/io/test_util.h"
@@ -238,6 +240,70 @@ TEST(PlyTest, AFolderThatCannotBeWrittenNamesTheFileAndLeavesNothing) {
   int files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);
+}
+
+std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+PlyLayout LayoutOf(const PlyData& d, bool binary) {
+  PlyLayout layout;
+  layout.num_vertices = d.points.size();
+  layout.normals = !d.normals.empty();
+  layout.colors = !d.colors.empty();
+  for (const auto& prop : d.int_properties) layout.int_properties.push_back(prop.first);
+  layout.num_triangles = d.triangles.size();
+  layout.comments = d.comments;
+  layout.binary = binary;
+  return layout;
+}
+
+TEST(PlyTest, AStreamWriterGivesTheBytesOfWritePly) {
+  TempDir dir;
+  PlyData d = MakeSample();
+  d.comments = {"made by a test"};
+  for (const bool binary : {true, false}) {
+    const std::string whole = dir.File(binary ? "whole_b.ply" : "whole_a.ply");
+    const std::string streamed = dir.File(binary ? "streamed_b.ply" : "streamed_a.ply");
+    WritePly(whole, d, binary);
+    PlyStreamWriter writer(streamed, LayoutOf(d, binary));
+    for (std::size_t i = 0; i < d.points.size(); ++i) {
+      const std::int32_t ints[2] = {d.int_properties[0].second[i], d.int_properties[1].second[i]};
+      writer.AddVertex(d.points[i], d.normals[i], d.colors[i], ints);
+    }
+    EXPECT_FALSE(std::filesystem::exists(streamed)) << "the file appears at Commit()";
+    for (const auto& t : d.triangles) writer.AddTriangle(t);
+    writer.Commit();
+    EXPECT_EQ(FileBytes(streamed), FileBytes(whole));
+    ExpectSame(d, ReadPly(streamed));
+  }
+}
+
+TEST(PlyTest, AStreamWriterRefusesOtherCountsThanAnnouncedAndLeavesNoFile) {
+  TempDir dir;
+  const PlyData d = MakeSample();
+  const std::int32_t ints[2] = {1, 2};
+  {
+    // Too few vertices at Commit().
+    PlyStreamWriter writer(dir.File("few.ply"), LayoutOf(d, true));
+    writer.AddVertex(d.points[0], d.normals[0], d.colors[0], ints);
+    ExpectInputError([&] { writer.Commit(); }, "few.ply");
+  }
+  {
+    // A face before the vertices are all written, and a face index out of range.
+    PlyStreamWriter writer(dir.File("early.ply"), LayoutOf(d, true));
+    ExpectInputError([&] { writer.AddTriangle({0, 1, 2}); }, "early.ply");
+    for (std::size_t i = 0; i < d.points.size(); ++i) writer.AddVertex(d.points[i], d.normals[i], d.colors[i], ints);
+    ExpectInputError([&] { writer.AddVertex(d.points[0], d.normals[0], d.colors[0], ints); }, "early.ply");
+    ExpectInputError([&] { writer.AddTriangle({0, 1, 5}); }, "triangle index 5");
+  }
+  {
+    PlyLayout bad = LayoutOf(d, true);
+    bad.int_properties[0] = "two words";
+    ExpectInputError([&] { PlyStreamWriter writer(dir.File("bad.ply"), bad); }, "bad property name");
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
 }  // namespace
