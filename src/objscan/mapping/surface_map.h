@@ -76,6 +76,7 @@ class SurfaceMap {
 
   // Element accessors (index in [0, size())).
   const Eigen::Vector3f& position(std::size_t i) const { return position_[i]; }
+  const std::vector<Eigen::Vector3f>& positions() const { return position_; }  // every element's, by index
   Eigen::Vector3f normal(std::size_t i) const { return normal_sum_[i].normalized(); }
   float weight(std::size_t i) const { return weight_[i]; }
   std::int32_t label(std::size_t i) const { return label_[i]; }
@@ -140,7 +141,7 @@ class SurfaceMap {
   std::vector<std::uint8_t> structure_;
 
   // Block hash (linear probing, power-of-two capacity, at most half full): block key -> offset of
-  // its 512 entries in block_elements_ (element index or -1 per voxel).
+  // its 64 entries in block_elements_ (element index or -1 per voxel).
   struct Slot {
     geometry::VoxelKey key;
     std::int32_t offset = -1;

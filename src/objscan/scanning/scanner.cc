@@ -387,7 +387,7 @@ struct Scanner::State {
   // after the map changed).
   const std::vector<Eigen::Vector3f>& Occluders() {
     if (occluders_stale) {
-      occluders = surface.AllPoints().points;
+      occluders = surface.positions();  // a snapshot: the map changes before the next refresh
       occluders_stale = false;
     }
     return occluders;
