@@ -30,6 +30,7 @@
 #include "objscan/io/scannet.h"
 #include "objscan/io/scene_spec.h"
 #include "objscan/mapping/surface_map.h"
+#include "objscan/recognition/classifier_cache.h"
 #include "objscan/recognition/database_builder.h"
 #include "objscan/recognition/default_database.h"
 #include "objscan/recognition/model_database.h"
@@ -208,10 +209,12 @@ class Scan {
 
   // One iteration of the loop; false once the run has terminated.
   bool Step() {
-    return Locked([&] {
+    const bool more = Locked([&] {
       if (finished_) return false;
       return scanner_->Step();
     });
+    WarnAboutClassifierCache();
+    return more;
   }
 
   // Steps to the end, then the end-of-run analysis, the report and the metrics (once).
@@ -223,6 +226,19 @@ class Scan {
       metrics_ = evaluator_->Evaluate(*scanner_, record_);
       finished_ = true;
     });
+    WarnAboutClassifierCache();
+  }
+
+  // How the category recognizer came from its cache; None until the scan first asked it.
+  py::object ClassifierCacheDict() {
+    const recognition::CachedClassifierStatus status = Locked([&] { return scanner_->classifier_cache_status(); });
+    if (status.path.empty()) return py::none();
+    py::dict d;
+    d["path"] = status.path;
+    d["loaded"] = status.loaded;
+    d["damage"] = status.damage;
+    d["write_error"] = status.write_error;
+    return d;
   }
 
   bool finished() const { return finished_; }
@@ -390,6 +406,23 @@ class Scan {
     });
   }
 
+  // A damaged cache file trained again, or a trained classifier that could not be kept, is said once
+  // as a RuntimeWarning with the CLI's words (apps/objscan ReportClassifierCache); the scan's results
+  // do not change. Called with the GIL held.
+  void WarnAboutClassifierCache() {
+    if (classifier_cache_reported_) return;
+    const recognition::CachedClassifierStatus status = Locked([&] { return scanner_->classifier_cache_status(); });
+    if (status.path.empty()) return;
+    classifier_cache_reported_ = true;
+    auto warn = [](const std::string& message) {
+      if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+    };
+    if (!status.damage.empty()) warn("the cached category recognizer is damaged, trained it again: " + status.damage);
+    if (!status.write_error.empty()) {
+      warn("could not keep the trained category recognizer in the cache: " + status.write_error);
+    }
+  }
+
   static py::array_t<std::int32_t> ToArray(const std::vector<int>& v) {
     py::array_t<std::int32_t> out(static_cast<py::ssize_t>(v.size()));
     auto a = out.mutable_unchecked<1>();
@@ -399,6 +432,7 @@ class Scan {
 
   PyScene scene_;
   PyDatabase database_;
+  bool classifier_cache_reported_ = false;
   std::uint64_t seed_;
   scanning::SystemConfig config_;
   std::unique_ptr<sim::SimulatedRobot> robot_;  // the platform the scanner drives
@@ -605,6 +639,11 @@ PYBIND11_MODULE(objscan, m) {
       .def_property_readonly("scene", &Scan::scene)
       .def_property_readonly("database", &Scan::database)
       .def("config", &Scan::ConfigDict, "The effective configuration (run.json's `config`).")
+      .def("classifier_cache", &Scan::ClassifierCacheDict,
+           "How the category recognizer came from its cache: a dict of path, loaded (read, not trained), "
+           "damage (why a cached file was rejected and trained again) and write_error (why the trained one "
+           "could not be kept); None until the scan first asked the recognizer. A damage or a write error "
+           "is also said once as a RuntimeWarning.")
       .def("record", &Scan::RecordDict,
            "The run as a dict: the content of run.json (scene, seed, database, config, terminated, steps, "
            "structure, objects, metrics once finished, timing_s), without peak_rss_mb and cpu_s.")

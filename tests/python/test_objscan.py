@@ -17,6 +17,7 @@ import sys
 import tempfile
 import threading
 import unittest
+import warnings
 
 import numpy as np
 
@@ -202,6 +203,59 @@ class StepTest(Scratch):
         scan.step()
         with self.assertRaises(RuntimeError):
             scan.save(os.path.join(self.dir, "out"))
+
+
+class ClassifierCacheTest(Scratch):
+    """How the category recognizer came from its cache can be read, and a damaged cache file is trained
+    again with one RuntimeWarning naming it (the CLI's line), the scan unchanged."""
+
+    def setUp(self):
+        super().setUp()
+        self.old_cache = os.environ.get("OBJSCAN_CACHE_DIR")
+        os.environ["OBJSCAN_CACHE_DIR"] = os.path.join(self.dir, "cache")
+
+    def tearDown(self):
+        if self.old_cache is None:
+            os.environ.pop("OBJSCAN_CACHE_DIR", None)
+        else:
+            os.environ["OBJSCAN_CACHE_DIR"] = self.old_cache
+        super().tearDown()
+
+    def scan(self):
+        scan = objscan.Scan(SCENE, database=DB, seed=SEED, sets=["scanner.max_steps=2"])
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            scan.finish()
+        return scan, [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]
+
+    def test_a_damaged_cache_file_is_trained_again_with_one_warning(self):
+        self.assertIsNone(objscan.Scan(SCENE, database=DB, seed=SEED).classifier_cache())  # not asked yet
+        trained, said = self.scan()
+        status = trained.classifier_cache()
+        self.assertIsNotNone(status)
+        self.assertFalse(status["loaded"])
+        self.assertEqual((status["damage"], status["write_error"]), ("", ""))
+        self.assertTrue(os.path.isfile(status["path"]))
+        self.assertEqual(said, [])
+
+        loaded, said = self.scan()
+        self.assertTrue(loaded.classifier_cache()["loaded"])
+        self.assertEqual(said, [])
+
+        with open(status["path"], "r+b") as f:
+            f.truncate(100)
+        repaired, said = self.scan()
+        self.assertFalse(repaired.classifier_cache()["loaded"])
+        self.assertEqual(len(said), 1, said)
+        self.assertIn("the cached category recognizer is damaged, trained it again: " + status["path"], said[0])
+        self.assertEqual(without_timings(repaired.record()), without_timings(loaded.record()))
+
+        # Reading it again says nothing more.
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            repaired.finish()
+            repaired.step()
+        self.assertEqual([w for w in caught if issubclass(w.category, RuntimeWarning)], [])
 
 
 class ArraysTest(Scratch):
