@@ -407,19 +407,15 @@ class Scan {
   }
 
   // A damaged cache file trained again, or a trained classifier that could not be kept, is said once
-  // as a RuntimeWarning with the CLI's words (apps/objscan ReportClassifierCache); the scan's results
-  // do not change. Called with the GIL held.
+  // as a RuntimeWarning with the CLI's words (recognition::ClassifierCacheMessages); the scan's
+  // results do not change. Called with the GIL held.
   void WarnAboutClassifierCache() {
     if (classifier_cache_reported_) return;
     const recognition::CachedClassifierStatus status = Locked([&] { return scanner_->classifier_cache_status(); });
     if (status.path.empty()) return;
     classifier_cache_reported_ = true;
-    auto warn = [](const std::string& message) {
+    for (const std::string& message : recognition::ClassifierCacheMessages(status)) {
       if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw py::error_already_set();
-    };
-    if (!status.damage.empty()) warn("the cached category recognizer is damaged, trained it again: " + status.damage);
-    if (!status.write_error.empty()) {
-      warn("could not keep the trained category recognizer in the cache: " + status.write_error);
     }
   }
 

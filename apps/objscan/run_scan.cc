@@ -65,14 +65,8 @@ std::vector<std::string> TrainingDatabasePaths(const std::vector<std::string>& n
 }
 
 void ReportClassifierCache(const recognition::CachedClassifierStatus& status) {
-  if (!status.damage.empty()) {
-    // The damage names the file.
-    std::fprintf(stderr, "objscan: the cached category recognizer is damaged, trained it again: %s\n",
-                 status.damage.c_str());
-  }
-  if (!status.write_error.empty()) {
-    std::fprintf(stderr, "objscan: could not keep the trained category recognizer in the cache: %s\n",
-                 status.write_error.c_str());
+  for (const std::string& message : recognition::ClassifierCacheMessages(status)) {
+    std::fprintf(stderr, "objscan: %s\n", message.c_str());
   }
 }
 

@@ -64,15 +64,26 @@ void AtomicFile::Commit() {
   SyncPath(folder.string(), O_RDONLY | O_DIRECTORY);
 }
 
+AtomicFileWriter::AtomicFileWriter(std::string path) : file_(std::move(path)) {
+  out_.open(file_.temp_path(), std::ios::binary | std::ios::trunc);
+  if (!out_) throw InputError(file_.path() + ": cannot write (cannot create file)");
+}
+
+void AtomicFileWriter::Write(const char* data, std::size_t size) {
+  out_.write(data, static_cast<std::streamsize>(size));
+  if (!out_) throw InputError(file_.path() + ": write failed");
+}
+
+void AtomicFileWriter::Commit() {
+  out_.flush();
+  out_.close();
+  if (!out_) throw InputError(file_.path() + ": write failed");
+  file_.Commit();
+}
+
 void WriteFileAtomically(const std::string& path, const std::string& bytes) {
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot write (cannot create file)");
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) throw InputError(path + ": write failed");
-  }
+  AtomicFileWriter file(path);
+  file.Write(bytes.data(), bytes.size());
   file.Commit();
 }
 

@@ -4,6 +4,8 @@
 // a crash never leaves a half-written file behind. The temporary file is hidden
 // (".<name>.tmp.<pid>"): a writer killed before the rename leaves no file that looks like an output,
 // and RemoveStaleTempFiles() clears such leftovers the next time the folder is written.
+#include <cstddef>
+#include <fstream>
 #include <string>
 
 namespace objscan::io {
@@ -27,6 +29,21 @@ class AtomicFile {
   std::string path_;
   std::string temp_path_;
   bool committed_ = false;
+};
+
+// An AtomicFile written as a stream: the temporary file is created at construction, Write() appends,
+// Commit() makes it the target. Without Commit() (an exception on the way) nothing is left. Throws
+// InputError naming the target on failure.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(std::string path);
+  void Write(const char* data, std::size_t size);
+  void Commit();
+  const std::string& path() const { return file_.path(); }
+
+ private:
+  AtomicFile file_;
+  std::ofstream out_;
 };
 
 // Writes `bytes` to `path` atomically; throws InputError naming the path on failure.

@@ -80,14 +80,12 @@ void CheckLayout(const std::string& path, const PlyLayout& layout) {
 struct PlyStreamWriter::Impl {
   Impl(const std::string& path, PlyLayout l) : layout(std::move(l)), file(path) {}
   PlyLayout layout;
-  AtomicFile file;
-  std::ofstream out;
+  AtomicFileWriter file;
   std::string buffer;
   std::size_t vertices = 0, triangles = 0;
 
   void Flush() {
-    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    if (!out) throw InputError(file.path() + ": write failed");
+    file.Write(buffer.data(), buffer.size());
     buffer.clear();
   }
   void MaybeFlush() {
@@ -101,8 +99,6 @@ PlyStreamWriter::PlyStreamWriter(const std::string& path, PlyLayout layout) {
   impl_ = std::make_unique<Impl>(path, std::move(layout));
   Impl& w = *impl_;
   const PlyLayout& l = w.layout;
-  w.out.open(w.file.temp_path(), std::ios::binary | std::ios::trunc);
-  if (!w.out) throw InputError(path + ": cannot write (cannot create file)");
   w.buffer.reserve(kPlyChunkBytes + 4096);
   std::string& out = w.buffer;
   out += "ply\n";
@@ -194,15 +190,10 @@ void PlyStreamWriter::Commit() {
                      std::to_string(w.layout.num_triangles) + " faces given");
   }
   w.Flush();
-  w.out.flush();
-  w.out.close();
-  if (!w.out) throw InputError(w.file.path() + ": write failed");
   w.file.Commit();
 }
 
-void WritePly(const std::string& path, const PlyData& data, bool binary) {
-  CheckLittleEndian(path);
-  CheckPlyData(path, data);
+PlyLayout LayoutOf(const PlyData& data, bool binary) {
   PlyLayout layout;
   layout.num_vertices = data.points.size();
   layout.normals = !data.normals.empty();
@@ -211,7 +202,13 @@ void WritePly(const std::string& path, const PlyData& data, bool binary) {
   layout.num_triangles = data.triangles.size();
   layout.comments = data.comments;
   layout.binary = binary;
-  PlyStreamWriter writer(path, std::move(layout));
+  return layout;
+}
+
+void WritePly(const std::string& path, const PlyData& data, bool binary) {
+  CheckLittleEndian(path);
+  CheckPlyData(path, data);
+  PlyStreamWriter writer(path, LayoutOf(data, binary));
   const Eigen::Vector3f no_normal = Eigen::Vector3f::Zero();
   const std::array<std::uint8_t, 3> no_color = {0, 0, 0};
   std::vector<std::int32_t> ints(data.int_properties.size());

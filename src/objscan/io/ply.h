@@ -40,6 +40,9 @@ struct PlyLayout {
   bool binary = true;
 };
 
+// The layout WritePly writes `data` with.
+PlyLayout LayoutOf(const PlyData& data, bool binary = true);
+
 // Writes a PLY without holding its data: the header at construction, then every vertex, then every
 // face, out to disk in 1 MB chunks (a house's map is hundreds of MB as a PlyData). The file appears
 // at Commit(), complete; without it (an exception on the way) nothing is left. Throws InputError

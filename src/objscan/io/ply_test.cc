@@ -247,18 +247,6 @@ std::string FileBytes(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-PlyLayout LayoutOf(const PlyData& d, bool binary) {
-  PlyLayout layout;
-  layout.num_vertices = d.points.size();
-  layout.normals = !d.normals.empty();
-  layout.colors = !d.colors.empty();
-  for (const auto& prop : d.int_properties) layout.int_properties.push_back(prop.first);
-  layout.num_triangles = d.triangles.size();
-  layout.comments = d.comments;
-  layout.binary = binary;
-  return layout;
-}
-
 TEST(PlyTest, AStreamWriterGivesTheBytesOfWritePly) {
   TempDir dir;
   PlyData d = MakeSample();

@@ -96,6 +96,16 @@ std::string ClassifierCacheKey(const std::vector<const ModelDatabase*>& database
   return buf;
 }
 
+std::vector<std::string> ClassifierCacheMessages(const CachedClassifierStatus& status) {
+  std::vector<std::string> messages;
+  // The damage names the file.
+  if (!status.damage.empty()) messages.push_back("the cached category recognizer is damaged, trained it again: " + status.damage);
+  if (!status.write_error.empty()) {
+    messages.push_back("could not keep the trained category recognizer in the cache: " + status.write_error);
+  }
+  return messages;
+}
+
 CategoryClassifier TrainOrLoadClassifier(const std::vector<const ModelDatabase*>& databases,
                                          const CategoryClassifierOptions& options, const std::string& cache_dir,
                                          CachedClassifierStatus* status) {

@@ -30,6 +30,11 @@ struct CachedClassifierStatus {
   std::string write_error;  // why the trained classifier could not be kept ("" if it was)
 };
 
+// What a user is told of `status`, one line each (no "objscan:" prefix): that a damaged cache file
+// was trained again, that the trained classifier could not be kept; none when all went well. The
+// CLI prints them, the Python module raises them as warnings.
+std::vector<std::string> ClassifierCacheMessages(const CachedClassifierStatus& status);
+
 // The classifier CategoryClassifier::Train(databases, options) returns, read from
 // `cache_dir`/classifier-<key>.bin when a valid file is there, else trained and saved there
 // atomically (the folder is created). A failed save leaves the result as trained and says why in

@@ -265,15 +265,11 @@ ModelDatabase ModelDatabase::Parse(const char* payload, std::size_t size, const 
         db.entries_[m.full_entry].kind != EntryKind::kFullModel)
       r.Fail("model full entry");
   }
-  for (auto& e : db.entries_) {
-    if (e.kind == EntryKind::kFullModel) {
-      for (const auto& p : e.points) e.bounds.Extend(p.cast<double>());
-      continue;
-    }
+  for (const auto& e : db.entries_) {
+    if (e.kind == EntryKind::kFullModel) continue;
     const DatabaseEntry& full = db.entries_[db.models_[e.model_index].full_entry];
     for (const std::int32_t j : e.point_indices) {
       if (j < 0 || j >= static_cast<std::int32_t>(full.points.size())) r.Fail("entry point index");
-      e.bounds.Extend(full.points[j].cast<double>());
     }
   }
   return db;

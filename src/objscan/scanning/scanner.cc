@@ -377,7 +377,6 @@ struct Scanner::State {
 
   // The points of m's database entry placed by m.T_world_model (none for a match without an entry).
   std::vector<Eigen::Vector3f> PlacedModelPoints(const segmentation::ModelMatch& m) const {
-    if (EntryOf(m) == nullptr) return {};
     std::vector<Eigen::Vector3f> points = database.EntryPoints(m.entry_id);
     for (auto& p : points) p = (m.T_world_model * p.cast<double>()).cast<float>();
     return points;
