@@ -10,6 +10,9 @@
 #include <tf2/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "bag_reader.h"
@@ -40,10 +43,16 @@ bool IsTopic(const std::string& topic, const std::string& name) {
          topic[topic.size() - name.size() - 1] == '/';
 }
 
+// A request as the scanner asks it again: without when it was asked.
+std::string Comparable(RobotRequest request) {
+  request.asked_stamp_ns = 0;
+  return EncodeRequest(request);
+}
+
 }  // namespace
 
 struct BagLink::Recording {
-  std::map<std::uint64_t, std::string> requests;  // encoded, by id
+  std::map<std::uint64_t, std::string> requests;  // Comparable(request), by id
   std::map<std::uint64_t, RobotResponse> responses;
   // Per capture request, the first depth image recorded after it, with its camera info and instances.
   struct Frame {
@@ -62,22 +71,32 @@ BagLink::BagLink(const std::string& bag_path, const std::string& world_frame, bo
       world_frame_(world_frame),
       ground_truth_(ground_truth) {
   Recording& r = *recording_;
-  std::vector<std::uint64_t> waiting_captures;  // capture requests without a frame yet, oldest first
+  // Capture requests in the order they were recorded: (id, when asked; 0 in a bag that does not say).
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> captures;
   std::map<ros::Time, sensor_msgs::CameraInfoConstPtr> infos;
   std::map<ros::Time, sensor_msgs::ImageConstPtr> instances;
-  std::vector<std::pair<std::uint64_t, sensor_msgs::ImageConstPtr>> depths;  // (capture id, image)
+  std::map<ros::Time, sensor_msgs::ImageConstPtr> depths;   // by stamp
+  // Bags without the request's time: each image goes to the oldest capture recorded before it
+  // still without one.
+  std::vector<std::pair<std::uint64_t, sensor_msgs::ImageConstPtr>> depths_by_order;
+  std::vector<std::uint64_t> waiting_captures;
   ReadBag(bag_path, [&](const BagMessage& m) {
     const std::string& topic = m.topic;
     if (IsTopic(topic, kRequestTopic) && m.type == "std_msgs/String") {
       const RobotRequest request = DecodeRequest(Deserialize<std_msgs::String>(m, bag_path)->data);
-      r.requests[request.id] = EncodeRequest(request);
-      if (request.kind == RequestKind::kCapture) waiting_captures.push_back(request.id);
+      r.requests[request.id] = Comparable(request);
+      if (request.kind == RequestKind::kCapture) {
+        captures.emplace_back(request.id, request.asked_stamp_ns);
+        waiting_captures.push_back(request.id);
+      }
     } else if (IsTopic(topic, kResponseTopic) && m.type == "std_msgs/String") {
       RobotResponse response = DecodeResponse(Deserialize<std_msgs::String>(m, bag_path)->data);
       r.responses[response.id] = std::move(response);
     } else if (IsTopic(topic, kDepthTopic) && m.type == "sensor_msgs/Image") {
+      const auto msg = Deserialize<sensor_msgs::Image>(m, bag_path);
+      depths.emplace(msg->header.stamp, msg);
       if (waiting_captures.empty()) return;  // a camera streams: frames nobody asked for
-      depths.emplace_back(waiting_captures.front(), Deserialize<sensor_msgs::Image>(m, bag_path));
+      depths_by_order.emplace_back(waiting_captures.front(), msg);
       waiting_captures.erase(waiting_captures.begin());
     } else if (IsTopic(topic, kInfoTopic) && m.type == "sensor_msgs/CameraInfo") {
       const auto msg = Deserialize<sensor_msgs::CameraInfo>(m, bag_path);
@@ -94,14 +113,27 @@ BagLink::BagLink(const std::string& bag_path, const std::string& world_frame, bo
     throw InputError(bag_path + ": the bag holds no conversation with a robot (objscan/robot_request and "
                                 "objscan/robot_response; record them with the camera topics and /tf, docs/ros.md)");
   }
-  for (const auto& [id, depth] : depths) {
+  auto frame_of = [&](const sensor_msgs::ImageConstPtr& depth) {
     Recording::Frame f;
     f.depth = depth;
     const auto info = infos.find(depth->header.stamp);
     if (info != infos.end()) f.info = info->second;
     const auto instance = instances.find(depth->header.stamp);
     if (instance != instances.end()) f.instance = instance->second;
-    r.frames[id] = f;
+    return f;
+  };
+  const bool stamped = !captures.empty() && std::all_of(captures.begin(), captures.end(),
+                                                         [](const auto& c) { return c.second != 0; });
+  if (stamped) {
+    // As objscan_ros takes them live: the first image stamped at or after the request.
+    for (const auto& [id, asked_ns] : captures) {
+      ros::Time asked;
+      asked.fromNSec(asked_ns);
+      const auto depth = depths.lower_bound(asked);
+      if (depth != depths.end()) r.frames[id] = frame_of(depth->second);
+    }
+  } else {
+    for (const auto& [id, depth] : depths_by_order) r.frames[id] = frame_of(depth);
   }
 }
 
@@ -110,7 +142,7 @@ BagLink::~BagLink() = default;
 RobotResponse BagLink::Call(const RobotRequest& request) {
   const Recording& r = *recording_;
   const auto recorded = r.requests.find(request.id);
-  const std::string asked = EncodeRequest(request);
+  const std::string asked = Comparable(request);
   // A recorder connects to each topic on its own time and may miss the first requests (the hello
   // before it subscribed): their responses are taken as they are.
   if (recorded == r.requests.end() && r.responses.count(request.id) == 0) {
@@ -137,7 +169,7 @@ platform::DepthFrame BagLink::Capture(std::uint64_t request_id) {
   request.id = request_id;
   request.kind = RequestKind::kCapture;
   const auto recorded = r.requests.find(request_id);
-  if (recorded == r.requests.end() || recorded->second != EncodeRequest(request)) {
+  if (recorded == r.requests.end() || recorded->second != Comparable(request)) {
     throw LinkError("capture request " + std::to_string(request_id) + " is not in the bag as a capture request");
   }
   const auto it = r.frames.find(request_id);

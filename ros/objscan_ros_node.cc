@@ -10,6 +10,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -66,9 +67,23 @@ class RosLink : public RobotLink {
   }
 
   RobotResponse Call(const RobotRequest& request) override {
-    if (request.kind == RequestKind::kHello) WaitForRobot();
-    Publish(request);
-    const bool answered = SpinUntil(args_.request_timeout_s, [&] { return responses_.count(request.id) > 0; });
+    bool answered = false;
+    if (request.kind == RequestKind::kHello) {
+      WaitForRobot();
+      // A subscriber on the request topic may be a recorder while the robot is still connecting, and
+      // a message sent before it connects is lost: the hello (which changes nothing) goes again each
+      // second until answered.
+      const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(args_.request_timeout_s);
+      while (!answered && ros::ok() && ros::WallTime::now() < until) {
+        Publish(request);
+        const double left_s = (until - ros::WallTime::now()).toSec();
+        answered = SpinUntil(std::min(kHelloResendS, std::max(0.0, left_s)),
+                             [&] { return responses_.count(request.id) > 0; });
+      }
+    } else {
+      Publish(request);
+      answered = SpinUntil(args_.request_timeout_s, [&] { return responses_.count(request.id) > 0; });
+    }
     if (!answered) {
       throw LinkError(std::string("no response to the ") + RequestKindName(request.kind) + " request on " +
                       response_sub_.getTopic() + " within " + Seconds(args_.request_timeout_s));
@@ -84,6 +99,7 @@ class RosLink : public RobotLink {
     RobotRequest request;
     request.id = request_id;
     request.kind = RequestKind::kCapture;
+    request.asked_stamp_ns = asked.toNSec();  // so a bag played back picks the same frame
     Publish(request);
     // The first depth image taken since the request, with its camera info (and ground truth).
     sensor_msgs::ImageConstPtr depth;
@@ -121,6 +137,7 @@ class RosLink : public RobotLink {
   }
 
  private:
+  static constexpr double kHelloResendS = 1.0;
   static std::string Seconds(double s) { return std::to_string(static_cast<int>(std::ceil(s))) + " s"; }
 
   void Publish(const RobotRequest& request) {

@@ -156,8 +156,10 @@ std::string EncodeRequest(const RobotRequest& r) {
                   {"smooth_path", r.map.options.smooth_path},
                   {"start_escape_m", r.map.options.start_escape_m}};
       break;
-    case RequestKind::kHello:
-    case RequestKind::kCapture: break;
+    case RequestKind::kCapture:
+      if (r.asked_stamp_ns != 0) j["asked_stamp_ns"] = r.asked_stamp_ns;
+      break;
+    case RequestKind::kHello: break;
   }
   return j.dump();
 }
@@ -173,6 +175,9 @@ RobotRequest DecodeRequest(const std::string& text) {
     }
     if (r.kind == RequestKind::kCheckReach || r.kind == RequestKind::kMoveCamera || r.kind == RequestKind::kTurnCamera) {
       r.T_world_camera = PoseOf(j.at("T_world_camera"), "T_world_camera");
+    }
+    if (r.kind == RequestKind::kCapture && j.contains("asked_stamp_ns")) {
+      r.asked_stamp_ns = j.at("asked_stamp_ns").get<std::uint64_t>();
     }
     if (r.kind == RequestKind::kMap) {
       const Json& m = j.at("map");

@@ -43,6 +43,10 @@ struct RobotRequest {
   geometry::Pose3 T_world_camera = geometry::Pose3::Identity();  // kCheckReach, kMoveCamera, kTurnCamera
   std::uint64_t map_revision = 0;                                // kCheckReach, kMoveCamera
   NavigationMap map;                                             // kMap
+  // kCapture: when objscan asked (ROS time, ns; 0 = not said). The frame is the first depth image
+  // stamped at or after it, live and when a bag is played back: a recorder may write the image
+  // before the request, so the order in a bag does not say which request an image answers.
+  std::uint64_t asked_stamp_ns = 0;
 };
 
 // Where the robot is after a request, sent with every response.

@@ -27,6 +27,21 @@ TEST(RobotProtocolTest, MovesTravelBitForBit) {
   EXPECT_EQ(back.T_world_camera.matrix(), request.T_world_camera.matrix()) << "not exact: runs would drift apart";
 }
 
+TEST(RobotProtocolTest, CapturesSayWhenTheyWereAsked) {
+  RobotRequest request;
+  request.id = 5;
+  request.kind = RequestKind::kCapture;
+  request.asked_stamp_ns = 1764409825123456789ull;  // beyond a double's 53 bits: must stay exact
+  const RobotRequest back = DecodeRequest(EncodeRequest(request));
+  EXPECT_EQ(back.kind, RequestKind::kCapture);
+  EXPECT_EQ(back.asked_stamp_ns, request.asked_stamp_ns);
+  // A capture that does not say (an older bag) reads as 0, and writes as it was.
+  request.asked_stamp_ns = 0;
+  const std::string unsaid = EncodeRequest(request);
+  EXPECT_EQ(unsaid.find("asked_stamp_ns"), std::string::npos) << unsaid;
+  EXPECT_EQ(DecodeRequest(unsaid).asked_stamp_ns, 0u);
+}
+
 TEST(RobotProtocolTest, MapsTravelWithTheBody) {
   RobotRequest request;
   request.id = 3;

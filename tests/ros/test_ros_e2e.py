@@ -148,7 +148,7 @@ def main():
     frames = sum(s.get("views", 0) for s in run["steps"])
 
     # The bag: the robot's topics, one depth image (with its camera info and instances) per frame.
-    import rosbag
+    import genpy, rosbag
     with rosbag.Bag(bag_path) as bag:
         info = bag.get_type_and_topic_info()
         counts = {t: info.topics[t].message_count for t in info.topics}
@@ -188,6 +188,37 @@ def main():
     print(compare.stdout, flush=True)
     if compare.returncode != 0:
         fail(f"the run played back from the bag differs from the run over ROS (kept in {work})")
+    # A recorder writes each topic as it comes: a depth image may land before the capture request it
+    # answers (seen on a loaded machine). The same bag with every capture request written just after
+    # its image must play back into the same run: the request's stamp, not the bag's order, names
+    # the frame.
+    late = os.path.join(work, "late_requests.bag")
+    moved = 0
+    with rosbag.Bag(bag_path) as src, rosbag.Bag(late, "w") as dst:
+        waiting = []
+        for topic, msg, t in src.read_messages():
+            if topic == "/objscan/robot_request" and json.loads(msg.data)["kind"] == "capture":
+                waiting.append(msg)
+                continue
+            dst.write(topic, msg, t)
+            if topic == "/camera/depth/image" and waiting:
+                for k, request in enumerate(waiting):
+                    dst.write("/objscan/robot_request", request, t + genpy.Duration(0, 1 + k))
+                moved += len(waiting)
+                waiting = []
+        for k, request in enumerate(waiting):
+            dst.write("/objscan/robot_request", request, t + genpy.Duration(0, 1 + k))
+    if moved != frames:
+        fail(f"moved {moved} capture requests behind their images, the run took {frames} frames")
+    late_out = os.path.join(work, "replay_late")
+    replay = subprocess.run([node, "--bag", late, "--scene", SCENE, "--db", db, "--seed", SEED, "--out", late_out,
+                             "--quiet"] + sets, env=env, capture_output=True, text=True, timeout=600)
+    print(f"objscan_ros --bag, images before their requests: exit {replay.returncode}\n{replay.stderr}", flush=True)
+    compare = subprocess.run([sys.executable, os.path.join(source, "scripts", "compare_runs.py"), "--exact", ros_out,
+                              late_out], capture_output=True, text=True)
+    if replay.returncode != 0 or compare.returncode != 0:
+        print(compare.stdout, flush=True)
+        fail("a bag whose images came before their capture requests did not play back into the same run")
     # A run that asks otherwise (another robot body: another map request) stops at the first request
     # that differs: exit code 3, one line, the scan so far written.
     parted_out = os.path.join(work, "parted")
