@@ -12,6 +12,7 @@
 #include <unistd.h>
 #include <map>
 #include <memory>
+#include <random>
 
 #include "objscan/common/rng.h"
 #include "objscan/recognition/alignment.h"
@@ -340,6 +341,53 @@ void BM_AlignCorrespondences(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(AlignToItem(q.keypoints, target, options));
 }
 BENCHMARK(BM_AlignCorrespondences)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The exact nearest keypoint of a query `distance_cm` (arg 1) from a box's surface of arg 2 points,
+// with a near-exact hint,
+// as ICP asks it for points outside the nearest grid's band: walking by split planes (arg 0 = 1), by
+// the nodes' boxes (2) or as kAuto chooses (0).
+void BM_NearestBoundedFar(benchmark::State& state) {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> gauss(0.f, 1.f);
+  // Keypoints on the surface of a 1.0 x 0.6 x 0.9 m box (a cabinet's size), arg 2 of them.
+  std::vector<Eigen::Vector3f> keypoints;
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  const Eigen::Vector3f size(1.0f, 0.6f, 0.9f);
+  while (static_cast<int>(keypoints.size()) < state.range(2)) {
+    Eigen::Vector3f p(unit(rng), unit(rng), unit(rng));
+    const int face = static_cast<int>(unit(rng) * 6.f) % 6;
+    p[face / 2] = static_cast<float>(face % 2);
+    keypoints.push_back(p.cwiseProduct(size));
+  }
+  const KdTree3 tree(keypoints);
+  const float distance_m = static_cast<float>(state.range(1)) / 100.f;
+  struct Query {
+    Eigen::Vector3f q;
+    float bound_d2;
+    int hint;
+  };
+  std::vector<Query> queries;
+  for (std::size_t k = 0; k < 512; ++k) {
+    const Eigen::Vector3f dir = Eigen::Vector3f(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const Eigen::Vector3f q = keypoints[(k * 7919) % keypoints.size()] + distance_m * dir;
+    // The hint: the nearest point of the query moved by 2 cm (the last ICP round's correspondence).
+    float unused = 0.f;
+    const int hint = tree.Nearest(q + 0.02f * Eigen::Vector3f(gauss(rng), gauss(rng), gauss(rng)).normalized(), &unused);
+    queries.push_back({q, (keypoints[hint] - q).squaredNorm(), hint});
+  }
+  const auto walk = static_cast<KdTree3::Walk>(state.range(0));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Query& x = queries[i++ % queries.size()];
+    float d2 = 0.f;
+    benchmark::DoNotOptimize(tree.NearestBounded(x.q, x.bound_d2, x.hint, &d2, walk));
+  }
+  state.counters["points"] = static_cast<double>(keypoints.size());
+}
+BENCHMARK(BM_NearestBoundedFar)
+    ->ArgsProduct({{0, 1, 2}, {2, 10, 20, 40, 80}, {500, 4000}})
+    ->ArgNames({"walk", "cm", "points"})
+    ->Unit(benchmark::kNanosecond);
 
 void BM_NearestGridBuild(benchmark::State& state) {
   const ModelDatabase& db = BaseDatabase();

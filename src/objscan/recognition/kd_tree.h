@@ -27,7 +27,14 @@ class KdTree3 {
   // pass a good guess (e.g. last ICP round's correspondence) as hint with bound_d2 = its squared
   // distance and the search prunes almost everything. Returns -1 when nothing is within the bound
   // and no hint is given.
-  int NearestBounded(const Eigen::Vector3f& q, float bound_d2, int hint, float* squared_distance) const;
+  // How NearestBounded walks the tree (the same answer either way, but for the choice among points
+  // at exactly the same distance): kSplitPlanes prunes by the distance to each split plane (cheap per
+  // node, and enough when the bound is small); kBoxes by the distance to each node's bounds (which
+  // a query far from the points needs: every split plane lies within a large bound); kAuto chooses
+  // by the bound.
+  enum class Walk { kAuto, kSplitPlanes, kBoxes };
+  int NearestBounded(const Eigen::Vector3f& q, float bound_d2, int hint, float* squared_distance,
+                     Walk walk = Walk::kAuto) const;
   // Up to k nearest points, closest first (indices and squared distances).
   void KNearest(const Eigen::Vector3f& q, int k, std::vector<int>* indices,
                 std::vector<float>* squared_distances) const;
@@ -62,6 +69,7 @@ class KdTree3 {
   std::vector<Eigen::Vector3f> ordered_;  // points_ in leaf order: leaves scan contiguous memory
   std::vector<std::int32_t> order_;       // ordered_[i] == points_[order_[i]]
   std::vector<Node> nodes_;
+  float split_planes_max_d2_ = 0.f;  // NearestBounded's kAuto walks by boxes beyond this bound
 };
 
 }  // namespace objscan::recognition

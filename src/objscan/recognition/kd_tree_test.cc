@@ -44,19 +44,23 @@ TEST(KdTreeTest, NearestMatchesBruteForceNearAndFar) {
   }
 }
 
-TEST(KdTreeTest, BoundedSearchFindsTheNearestInsideTheBoundOrKeepsTheHint) {
+class KdTreeWalkTest : public ::testing::TestWithParam<KdTree3::Walk> {};
+
+TEST_P(KdTreeWalkTest, BoundedSearchFindsTheNearestInsideTheBoundOrKeepsTheHint) {
+  const KdTree3::Walk walk = GetParam();
   Rng rng(5);
   const std::vector<Eigen::Vector3f> pts = RandomPoints(500, 1.0, &rng);
   const KdTree3 tree(pts);
   int closer = 0, kept = 0, none = 0;
-  for (const auto& q : RandomPoints(400, 1.5, &rng)) {
+  // Queries inside the cloud and up to 3 units outside it: kAuto takes both walks among them.
+  for (const auto& q : RandomPoints(400, 4.0, &rng)) {
     float brute_d2 = 0.f;
     BruteNearest(pts, q, &brute_d2);
     // A hint: any point gives a valid bound; the result must be the exact nearest neighbour.
     const int hint = rng.UniformInt(0, static_cast<int>(pts.size()) - 1);
     const float hint_d2 = (pts[hint] - q).squaredNorm();
     float d2 = 0.f;
-    const int i = tree.NearestBounded(q, hint_d2, hint, &d2);
+    const int i = tree.NearestBounded(q, hint_d2, hint, &d2, walk);
     EXPECT_FLOAT_EQ(d2, brute_d2);
     EXPECT_FLOAT_EQ((pts[i] - q).squaredNorm(), brute_d2);
     if (i == hint) {
@@ -66,7 +70,7 @@ TEST(KdTreeTest, BoundedSearchFindsTheNearestInsideTheBoundOrKeepsTheHint) {
     }
     // A bare bound: -1 when nothing is strictly inside it.
     const float bound = 0.01f;
-    const int b = tree.NearestBounded(q, bound, -1, &d2);
+    const int b = tree.NearestBounded(q, bound, -1, &d2, walk);
     if (brute_d2 < 0.999f * bound) {
       EXPECT_FLOAT_EQ(d2, brute_d2);
       EXPECT_GE(b, 0);
@@ -79,6 +83,9 @@ TEST(KdTreeTest, BoundedSearchFindsTheNearestInsideTheBoundOrKeepsTheHint) {
   EXPECT_GT(none, 0);
   (void)kept;
 }
+
+INSTANTIATE_TEST_SUITE_P(Walks, KdTreeWalkTest,
+                         ::testing::Values(KdTree3::Walk::kAuto, KdTree3::Walk::kSplitPlanes, KdTree3::Walk::kBoxes));
 
 TEST(KdTreeTest, EmptyTreeAndCoincidentPoints) {
   const KdTree3 empty;
