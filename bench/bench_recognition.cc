@@ -343,9 +343,8 @@ void BM_AlignCorrespondences(benchmark::State& state) {
 BENCHMARK(BM_AlignCorrespondences)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The exact nearest keypoint of a query `distance_cm` (arg 1) from a box's surface of arg 2 points,
-// with a near-exact hint,
-// as ICP asks it for points outside the nearest grid's band: walking by split planes (arg 0 = 1), by
-// the nodes' boxes (2) or as kAuto chooses (0).
+// with a near-exact hint, as ICP asks it for points outside the nearest grid's band: walking by split
+// planes (arg 0 = 1), by the nodes' boxes (2) or as kAuto chooses (0).
 void BM_NearestBoundedFar(benchmark::State& state) {
   std::mt19937 rng(7);
   std::normal_distribution<float> gauss(0.f, 1.f);

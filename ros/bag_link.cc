@@ -54,7 +54,8 @@ std::string Comparable(RobotRequest request) {
 struct BagLink::Recording {
   std::map<std::uint64_t, std::string> requests;  // Comparable(request), by id
   std::map<std::uint64_t, RobotResponse> responses;
-  // Per capture request, the first depth image recorded after it, with its camera info and instances.
+  // Per capture request, its depth image (the first stamped at or after the request), with its camera
+  // info and instances.
   struct Frame {
     sensor_msgs::ImageConstPtr depth;
     sensor_msgs::CameraInfoConstPtr info;

@@ -3,9 +3,10 @@
 // (objscan/robot_request, objscan/robot_response), the depth frames with their camera info (and
 // ground-truth instances) and tf, as `rosbag record` keeps them (docs/ros.md). The scanner asks again
 // what it asked when the bag was recorded (same scene, seed and config), and each request gets the
-// recorded response and each capture the frame the robot sent after it: the reconstruction and the
-// whole run come back without a robot or a ROS master. A run that asks otherwise than the recorded
-// one (another seed or config) stops at the first request that differs, with one line naming it.
+// recorded response and each capture the first depth frame stamped at or after it: the
+// reconstruction and the whole run come back without a robot or a ROS master. A run that asks
+// otherwise than the recorded one (another seed or config) stops at the first request that differs,
+// with one line naming it.
 #include <cstdint>
 #include <memory>
 #include <string>

@@ -67,22 +67,19 @@ class RosLink : public RobotLink {
   }
 
   RobotResponse Call(const RobotRequest& request) override {
+    if (request.kind == RequestKind::kHello) WaitForRobot();
+    // A subscriber on the request topic may be a recorder while the robot is still connecting, and a
+    // message sent before it connects is lost: the hello (which changes nothing) goes again each
+    // second until answered. Any other request is sent once.
+    const bool resend = request.kind == RequestKind::kHello;
+    const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(args_.request_timeout_s);
     bool answered = false;
-    if (request.kind == RequestKind::kHello) {
-      WaitForRobot();
-      // A subscriber on the request topic may be a recorder while the robot is still connecting, and
-      // a message sent before it connects is lost: the hello (which changes nothing) goes again each
-      // second until answered.
-      const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(args_.request_timeout_s);
-      while (!answered && ros::ok() && ros::WallTime::now() < until) {
-        Publish(request);
-        const double left_s = (until - ros::WallTime::now()).toSec();
-        answered = SpinUntil(std::min(kHelloResendS, std::max(0.0, left_s)),
-                             [&] { return responses_.count(request.id) > 0; });
-      }
-    } else {
+    while (!answered && ros::ok() && ros::WallTime::now() < until) {
       Publish(request);
-      answered = SpinUntil(args_.request_timeout_s, [&] { return responses_.count(request.id) > 0; });
+      const double left_s = std::max(0.0, (until - ros::WallTime::now()).toSec());
+      answered = SpinUntil(resend ? std::min(kHelloResendS, left_s) : left_s,
+                           [&] { return responses_.count(request.id) > 0; });
+      if (!resend) break;
     }
     if (!answered) {
       throw LinkError(std::string("no response to the ") + RequestKindName(request.kind) + " request on " +

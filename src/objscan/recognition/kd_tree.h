@@ -23,16 +23,16 @@ class KdTree3 {
 
   // Index of the point nearest to q and its squared distance; -1 when the tree is empty.
   int Nearest(const Eigen::Vector3f& q, float* squared_distance) const;
-  // Nearest point strictly closer than sqrt(bound_d2), or `hint` (with its distance) when none is:
-  // pass a good guess (e.g. last ICP round's correspondence) as hint with bound_d2 = its squared
-  // distance and the search prunes almost everything. Returns -1 when nothing is within the bound
-  // and no hint is given.
   // How NearestBounded walks the tree (the same answer either way, but for the choice among points
   // at exactly the same distance): kSplitPlanes prunes by the distance to each split plane (cheap per
   // node, and enough when the bound is small); kBoxes by the distance to each node's bounds (which
   // a query far from the points needs: every split plane lies within a large bound); kAuto chooses
   // by the bound.
   enum class Walk { kAuto, kSplitPlanes, kBoxes };
+  // Nearest point strictly closer than sqrt(bound_d2), or `hint` (with its distance) when none is:
+  // pass a good guess (e.g. last ICP round's correspondence) as hint with bound_d2 = its squared
+  // distance and the search prunes almost everything. Returns -1 when nothing is within the bound
+  // and no hint is given.
   int NearestBounded(const Eigen::Vector3f& q, float bound_d2, int hint, float* squared_distance,
                      Walk walk = Walk::kAuto) const;
   // Up to k nearest points, closest first (indices and squared distances).
