@@ -9,15 +9,20 @@
 #include <Eigen/Eigenvalues>
 
 #include "objscan/common/error.h"
+#include "objscan/common/parallel_for.h"
 #include "objscan/common/rng.h"
 #include "objscan/io/binary_file.h"
+#include "objscan/recognition/keypoints.h"
 #include "objscan/recognition/model_database.h"
+#include "objscan/recognition/virtual_scan.h"
 
 namespace objscan::recognition {
 
 void CategoryClassifierOptions::Validate() const {
   config::Require(method == "forest" || method == "softmax", "recognition.classifier.method",
                   "must be 'forest' or 'softmax', not '" + method + "'");
+  config::Require(training_views == "keypoints" || training_views == "rendered", "recognition.classifier.training_views",
+                  "must be 'keypoints' or 'rendered', not '" + training_views + "'");
   config::Require(balance == "samples" || balance == "models", "recognition.classifier.balance",
                   "must be 'samples' or 'models', not '" + balance + "'");
   for (double depth : validation_depths) {
@@ -415,6 +420,72 @@ std::optional<int> SelectDepthByHeldOutValidation(const std::vector<std::array<f
 
 }  // namespace
 
+namespace {
+
+// A full model whose training views are rendered from its stored mesh (training_views "rendered").
+struct RenderJob {
+  const ModelDatabase* database;
+  const DatabaseEntry* entry;
+  int source, group;
+};
+
+// The rendered views of each job, appended in job order: whole views at the training azimuths and
+// elevations, then halves of views (HalfOf, as the evaluation cuts its pieces), each fused alone
+// with the sensor's noise and described by keypoints as Recognizer::Describe describes a query.
+// Models are rendered in parallel (forest.threads), each from its own seed: the same samples at
+// any thread count.
+void AddRenderedViews(const std::vector<RenderJob>& jobs, const CategoryClassifierOptions& options,
+                      std::vector<std::array<float, kNumShapeFeatures>>* features, std::vector<world::Category>* labels,
+                      std::vector<int>* groups, std::vector<int>* sources) {
+  if (jobs.empty()) return;
+  std::vector<std::vector<std::array<float, kNumShapeFeatures>>> per_job(jobs.size());
+  VirtualScanOptions scan;
+  scan.sensor.threads = 1;  // parallel over models instead
+  const int n_jobs = static_cast<int>(jobs.size());
+  ParallelForBlocks(n_jobs, options.forest.threads, [&](int j) {
+    const RenderJob& job = jobs[static_cast<std::size_t>(j)];
+    const DatabaseModel& model = job.database->models()[static_cast<std::size_t>(job.entry->model_index)];
+    const DatabaseSettings& settings = job.database->settings();
+    Rng rng(DeriveSeed(options.seed, static_cast<std::uint64_t>(j)));
+    const geometry::Aabb3 bounds = geometry::Bounds(model.mesh);
+    const int views = options.views_per_model + options.half_views_per_model;
+    for (int v = 0; v < views; ++v) {
+      const bool half = v >= options.views_per_model;
+      const int u = half ? v - options.views_per_model : v;
+      const int per_ring = half ? options.half_views_per_model : options.views_per_model;
+      const double azimuth = 2.0 * M_PI * (u + (half ? 0.5 : 0.0)) / per_ring;
+      const double elevation = (u % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
+      geometry::PointCloud surface =
+          ScanSurface(model.mesh, {ViewFrom(bounds, azimuth, elevation, scan)}, scan, /*noise=*/true, &rng);
+      if (half) surface = HalfOf(surface, &rng);
+      if (surface.points.size() < 8 || !surface.HasNormals()) continue;
+      Rng keypoint_rng(settings.keypoint_seed);  // as Recognizer::Describe
+      std::vector<Eigen::Vector3f> points, normals;
+      for (int i : SampleKeypointsLloyd(surface.points, settings.keypoints, &keypoint_rng)) {
+        points.push_back(surface.points[static_cast<std::size_t>(i)]);
+        normals.push_back(surface.normals[static_cast<std::size_t>(i)]);
+      }
+      if (points.size() < 8) continue;
+      double floor_z_m = 0.0;
+      if (!model.support_heights_m.empty()) {
+        floor_z_m = -static_cast<double>(
+            model.support_heights_m[static_cast<std::size_t>(rng.UniformInt(0, static_cast<int>(model.support_heights_m.size()) - 1))]);
+      }
+      per_job[static_cast<std::size_t>(j)].push_back(ShapeFeatures(points, normals, floor_z_m));
+    }
+  });
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    for (const auto& f : per_job[j]) {
+      features->push_back(f);
+      labels->push_back(jobs[j].entry->category);
+      groups->push_back(jobs[j].group);
+      sources->push_back(jobs[j].source);
+    }
+  }
+}
+
+}  // namespace
+
 CategoryClassifier CategoryClassifier::Train(const ModelDatabase& database, const CategoryClassifierOptions& options) {
   return Train(std::vector<const ModelDatabase*>{&database}, options);
 }
@@ -447,6 +518,7 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
     groups.push_back(group_base + e.model_index);
     sources.push_back(source);
   };
+  std::vector<RenderJob> render_jobs;  // full models whose views are rendered, after the loop below
   for (std::size_t d = 0; d < databases.size(); ++d) {
     database = databases[d];
     source = static_cast<int>(d);
@@ -458,6 +530,12 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
         continue;
       }
       add(e.keypoints, e.keypoint_normals, e);
+      if (options.training_views != "keypoints" && e.model_index >= 0 &&
+          e.model_index < static_cast<std::int32_t>(database->models().size()) &&
+          !database->models()[static_cast<std::size_t>(e.model_index)].mesh.triangles.empty()) {
+        render_jobs.push_back({database, &e, source, group_base + e.model_index});
+        continue;
+      }
       const int views = options.views_per_model + (options.method == "forest" ? options.half_views_per_model : 0);
       for (int v = 0; v < views; ++v) {
         // Azimuths evenly around the model; alternate views at the low and the high elevation. The
@@ -499,6 +577,7 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
       }
     }
   }
+  AddRenderedViews(render_jobs, options, &features, &labels, &groups, &sources);
   if (options.method != "forest" || options.validation_depths.empty() || features.empty()) {
     return Fit(features, labels, options, groups);
   }

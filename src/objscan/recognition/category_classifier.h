@@ -37,6 +37,11 @@ struct CategoryClassifierOptions {
   double high_elevation_deg = 45.0;
   double visible_min_cos = 0.1;      // a keypoint is seen from a view when n . view > this
   int half_views_per_model = 8;      // views cut in half by a random vertical plane, per full model
+  // How a training view of a full model is made: "keypoints" (the model's keypoints whose normal
+  // faces the view: no self-occlusion, no noise) or "rendered" (the model's stored mesh rendered by
+  // the live depth sensor with its noise, fused, and described by keypoints like a query: what the
+  // recognizer meets in a scan; models without a stored mesh fall back to "keypoints").
+  std::string training_views = "keypoints";
   bool include_pieces = true;        // the database's component and pair entries are samples too
   std::uint64_t seed = 1;            // half-view cuts and support heights drawn per sample
   // Model databases whose models are training samples too, beside the recognizer's own (e.g. a
@@ -74,6 +79,7 @@ struct CategoryClassifierOptions {
     v("high_elevation_deg", high_elevation_deg);
     v("visible_min_cos", visible_min_cos);
     v("half_views_per_model", half_views_per_model);
+    v("training_views", training_views);
     v("include_pieces", include_pieces);
     v("seed", seed);
     v("extra_training_databases", extra_training_databases);

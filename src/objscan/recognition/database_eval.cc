@@ -50,24 +50,6 @@ geometry::PointCloud ScanViews(const geometry::TriangleMesh& mesh, int n_views, 
   return ScanModel(mesh, views, scan, options.query_noise, rng).surface;
 }
 
-// Half of a view: the points on one side of a random vertical plane through their centroid.
-geometry::PointCloud HalfOf(const geometry::PointCloud& cloud, Rng* rng) {
-  if (cloud.points.empty()) return cloud;
-  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-  for (const auto& p : cloud.points) centroid += p;
-  centroid /= static_cast<float>(cloud.points.size());
-  const double angle = rng->Uniform(-M_PI, M_PI);
-  const Eigen::Vector3f side(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), 0.f);
-  geometry::PointCloud half;
-  const bool with_normals = cloud.normals.size() == cloud.points.size();
-  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
-    if ((cloud.points[i] - centroid).dot(side) < 0.f) continue;
-    half.points.push_back(cloud.points[i]);
-    if (with_normals) half.normals.push_back(cloud.normals[i]);
-  }
-  return half;
-}
-
 }  // namespace
 
 std::vector<ModelSource> ProceduralQuerySources(const ModelDatabase& database, const DatabaseEvalOptions& options) {

@@ -83,6 +83,40 @@ ModelScan ScanModel(const geometry::TriangleMesh& mesh, const std::vector<geomet
   return scan;
 }
 
+geometry::PointCloud ScanSurface(const geometry::TriangleMesh& mesh, const std::vector<geometry::Pose3>& views,
+                                 const VirtualScanOptions& options, bool noise, Rng* rng) {
+  world::Scene scene("virtual-scan");
+  world::SceneObject object;
+  object.category = world::Category::kOther;
+  object.name = "model";
+  object.mesh = mesh;
+  scene.Add(std::move(object));
+  render::SensorOptions sensor = options.sensor;
+  sensor.noise = noise;
+  const render::DepthCamera camera(scene, sensor);
+  mapping::SurfaceMap map(options.map);
+  mapping::FrameAssociation association;
+  for (const auto& T_world_camera : views) map.Integrate(camera.Render(T_world_camera, noise ? rng : nullptr), &association);
+  return map.AllPoints();
+}
+
+geometry::PointCloud HalfOf(const geometry::PointCloud& cloud, Rng* rng) {
+  if (cloud.points.empty()) return cloud;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (const auto& p : cloud.points) centroid += p;
+  centroid /= static_cast<float>(cloud.points.size());
+  const double angle = rng->Uniform(-M_PI, M_PI);
+  const Eigen::Vector3f side(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), 0.f);
+  geometry::PointCloud half;
+  const bool with_normals = cloud.normals.size() == cloud.points.size();
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    if ((cloud.points[i] - centroid).dot(side) < 0.f) continue;
+    half.points.push_back(cloud.points[i]);
+    if (with_normals) half.normals.push_back(cloud.normals[i]);
+  }
+  return half;
+}
+
 double TypicalHeight(world::Category category) {
   using world::Category;
   switch (category) {

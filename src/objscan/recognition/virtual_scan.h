@@ -70,6 +70,15 @@ struct ModelScan {
 ModelScan ScanModel(const geometry::TriangleMesh& mesh, const std::vector<geometry::Pose3>& views,
                     const VirtualScanOptions& options, bool noise, Rng* rng);
 
+// Renders the mesh from each view and fuses the frames (ScanModel without pre-segmentation): the
+// surface a live scan of the model alone would hold. Same `rng` state, same cloud.
+geometry::PointCloud ScanSurface(const geometry::TriangleMesh& mesh, const std::vector<geometry::Pose3>& views,
+                                 const VirtualScanOptions& options, bool noise, Rng* rng);
+
+// Half of a view: the points (and normals, when every point has one) on one side of a vertical
+// plane through their centroid, the plane's direction drawn from `rng`. An empty cloud draws nothing.
+geometry::PointCloud HalfOf(const geometry::PointCloud& cloud, Rng* rng);
+
 // Brings a mesh into the database frame: centred on the origin in XY and standing on z = 0. A mesh
 // whose size is implausible in metres (ModelNet-style arbitrary units: bounding-box diagonal above
 // 20 m or below 5 cm) is scaled so its height is `typical_height_m`.
