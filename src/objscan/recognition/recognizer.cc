@@ -293,10 +293,14 @@ void Recognizer::Measure(const QueryDescription& query, const std::vector<Eigen:
     float d2 = 0.f;
     const Eigen::Vector3f p = T_query_item * model[k];
     if (check_space) placed[k] = p;
-    points_tree.Nearest(p, &d2);
     if (structure_explains) {
+      // min(nearest query point, structure): the structure's distance bounds the search, which then
+      // prunes all but the points nearer than it (a model point on the floor searches nothing).
       const Eigen::Vector3f n = (T_query_item.linear() * e.keypoint_normals[k]).normalized();
-      d2 = std::min(d2, static_cast<float>(space->SquaredDistanceToStructure(p, n)));
+      const float structure_d2 = static_cast<float>(space->SquaredDistanceToStructure(p, n));
+      if (points_tree.NearestBounded(p, structure_d2, -1, &d2) < 0) d2 = structure_d2;
+    } else {
+      points_tree.Nearest(p, &d2);
     }
     model_d2[k] = scale2 * d2;
     sum += model_d2[k];
