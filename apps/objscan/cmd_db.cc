@@ -42,6 +42,7 @@ struct DbArgs {
   int variants = 8;
   std::string sampling = "style-medoids";  // as the built-in database
   int queries_per_category = 5;
+  int draws = 1;
   int threads = 0;
   std::uint64_t seed = 1;
   std::vector<std::string> sets;
@@ -218,6 +219,7 @@ int RunInfo(const DbArgs& a) {
 int RunEval(const DbArgs& a) {
   recognition::DatabaseEvalOptions options;
   options.queries_per_category = a.queries_per_category;
+  options.draws_per_model = a.draws;
   options.threads = a.threads;
   ApplySets(a.sets, &options);
   const bool procedural = a.queries.size() == 1 && a.queries.front() == "procedural";
@@ -307,6 +309,7 @@ int RunEval(const DbArgs& a) {
     per_query.push_back({{"model", q.model},
                          {"views", q.views},
                          {"piece", q.piece},
+                         {"draw", q.draw},
                          {"truth", world::CategoryName(q.truth)},
                          {"predicted", world::CategoryName(q.predicted)},
                          {"retrieval", world::CategoryName(q.retrieved_category)},
@@ -367,6 +370,10 @@ void AddDbCommand(CLI::App& root, RunFn* run) {
   eval->add_option("--queries-per-category", args->queries_per_category,
                    "query models per category (the first ones; 0 = all)")
       ->default_str("5");
+  eval->add_option("--draws", args->draws,
+                   "scans of each query model from new random views, for each kind of query (more draws: less "
+                   "noise from the views; draw 1 is the same at any count)")
+      ->default_str("1");
   AddModelPathOption(eval, &args->model_path, " (of --queries worlds)");
   eval->add_option("--category-map", args->category_map, "category map YAML for --queries worlds and scans");
   eval->add_option("--threads", args->threads, "queries run in parallel (0 = all cores)")->default_str("0");

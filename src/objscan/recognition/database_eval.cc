@@ -22,6 +22,7 @@ void DatabaseEvalOptions::Validate() const {
   config::RequireInRange("recognition.eval.min_elevation_deg", min_elevation_deg, -30.0, 89.0);
   config::RequireInRange("recognition.eval.max_elevation_deg", max_elevation_deg, min_elevation_deg, 89.0);
   config::RequireNonNegative("recognition.eval.threads", threads);
+  config::Require(draws_per_model >= 1, "recognition.eval.draws_per_model", "must be at least 1");
   scan.Validate();
   recognition.Validate();
 }
@@ -116,11 +117,14 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
     const ModelSource* source;
     int views;
     bool piece;
+    int draw;
   };
   std::vector<Task> tasks;
-  for (const ModelSource* s : sources) {
-    for (int views : {1, 3}) tasks.push_back({s, views, false});
-    if (options.piece_queries) tasks.push_back({s, 1, true});
+  for (int draw = 0; draw < options.draws_per_model; ++draw) {
+    for (const ModelSource* s : sources) {
+      for (int views : {1, 3}) tasks.push_back({s, views, false, draw});
+      if (options.piece_queries) tasks.push_back({s, 1, true, draw});
+    }
   }
   // Objectness tasks: database models scanned afresh.
   std::vector<int> objectness_models;
@@ -235,6 +239,7 @@ DatabaseEvalResult EvaluateDatabase(const ModelDatabase& database, const std::ve
       q.retrieved_category = results[t].retrieved_category;
       q.views = views;
       q.piece = piece;
+      q.draw = tasks[t].draw;
       q.top5 = results[t].top5;
       q.model = tasks[t].source->name;
       q.retrieved = std::move(results[t].retrieved);

@@ -91,6 +91,43 @@ TEST(DatabaseEvalTest, OwnModelsAreRecognizedAndUnknownCategoriesSkipped) {
     EXPECT_EQ(again.queries[i].model, r.queries[i].model);
   }
 
+  // Two draws: every query twice, the second from new views; the first draw is the same queries as
+  // one draw gives (same posteriors), and each draw holds every kind of query of every model.
+  DatabaseEvalOptions two_draws = FastEvalOptions();
+  two_draws.draws_per_model = 2;
+  const DatabaseEvalResult drawn = EvaluateDatabase(db, queries, two_draws);
+  ASSERT_EQ(drawn.queries.size(), 2 * r.queries.size());
+  EXPECT_EQ(drawn.query_models, r.query_models);
+  ASSERT_EQ(drawn.by_views.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(drawn.by_views[k].queries, 2 * r.by_views[k].queries);
+  // Queries are listed by kind (1 view, 3 views, piece), each kind's draws in order.
+  std::vector<const DatabaseEvalResult::Query*> first_draw;
+  int second = 0;
+  bool any_new_posterior = false;
+  for (const auto& q : drawn.queries) {
+    if (q.draw == 0) {
+      first_draw.push_back(&q);
+    } else {
+      EXPECT_EQ(q.draw, 1);
+      ++second;
+    }
+  }
+  ASSERT_EQ(first_draw.size(), r.queries.size());
+  EXPECT_EQ(second, static_cast<int>(r.queries.size()));
+  for (std::size_t i = 0; i < r.queries.size(); ++i) {
+    EXPECT_EQ(first_draw[i]->model, r.queries[i].model);
+    EXPECT_EQ(first_draw[i]->posterior, r.queries[i].posterior) << i;
+  }
+  for (const auto& q : drawn.queries) {
+    if (q.draw != 1) continue;
+    for (const auto& p : r.queries) {
+      if (p.model == q.model && p.views == q.views && p.piece == q.piece && p.posterior != q.posterior) any_new_posterior = true;
+    }
+  }
+  EXPECT_TRUE(any_new_posterior) << "the second draw scans the models from other views";
+  two_draws.draws_per_model = 0;
+  EXPECT_THROW(two_draws.Validate(), InputError);
+
   // At most queries_per_category per category: the first one of each.
   DatabaseEvalOptions capped = FastEvalOptions();
   std::vector<ModelSource> doubled = queries;
