@@ -23,6 +23,7 @@
 #include "objscan/recognition/recognizer.h"
 #include "objscan/recognition/test_database.h"
 #include "objscan/recognition/virtual_scan.h"
+#include "objscan/recognition/vocabulary.h"
 #include "objscan/world/procedural/procedural.h"
 
 namespace {
@@ -180,6 +181,54 @@ void BM_Objectness(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(ComputeObjectness(c, m, Eigen::Affine3d::Identity()));
 }
 BENCHMARK(BM_Objectness)->Unit(benchmark::kMicrosecond);
+
+// Soft assignment of one FPFH-sized descriptor (33 bins) to a 128-word vocabulary, 3 words, as
+// ComputeSpatialBow assigns every keypoint's descriptor. Arg 0: Vocabulary::Assign (all words'
+// distances at once over the transposed words); arg 1: the word-by-word scalar loop it replaced,
+// the peer (the same answer, checked by VocabularyTest.AssignmentIsExactlyTheWordByWordLoops).
+void BM_VocabularyAssign(benchmark::State& state) {
+  constexpr int kWords = 128, kDimension = 33;
+  objscan::Rng rng(5);
+  std::vector<float> words(static_cast<std::size_t>(kWords) * kDimension);
+  for (auto& x : words) x = static_cast<float>(rng.Uniform(0.0, 0.4));
+  const objscan::recognition::Vocabulary vocabulary(kDimension, words, 0.05f, 3);
+  std::vector<std::vector<float>> queries(512, std::vector<float>(kDimension));
+  for (auto& q : queries) {
+    for (auto& x : q) x = static_cast<float>(rng.Uniform(0.0, 10.0));
+  }
+  const bool word_by_word = state.range(0) == 1;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::vector<float>& q = queries[i++ % queries.size()];
+    if (!word_by_word) {
+      objscan::recognition::WordAssignment out[8];
+      benchmark::DoNotOptimize(vocabulary.Assign(q.data(), out));
+      continue;
+    }
+    float x[kDimension];
+    objscan::recognition::HellingerMap(q.data(), kDimension, x);
+    float best_d2[3] = {1e30f, 1e30f, 1e30f};
+    int best[3] = {-1, -1, -1};
+    for (int w = 0; w < kWords; ++w) {
+      float s = 0.f;
+      for (int d = 0; d < kDimension; ++d) {
+        const float e = x[d] - words[static_cast<std::size_t>(w) * kDimension + d];
+        s += e * e;
+      }
+      if (s >= best_d2[2]) continue;
+      int pos = 2;
+      while (pos > 0 && best_d2[pos - 1] > s) {
+        best_d2[pos] = best_d2[pos - 1];
+        best[pos] = best[pos - 1];
+        --pos;
+      }
+      best_d2[pos] = s;
+      best[pos] = w;
+    }
+    benchmark::DoNotOptimize(best);
+  }
+}
+BENCHMARK(BM_VocabularyAssign)->Arg(0)->Arg(1)->ArgName("word_by_word")->Unit(benchmark::kNanosecond);
 
 void BM_LloydKeypoints(benchmark::State& state) {
   geometry::PointCloud cloud;

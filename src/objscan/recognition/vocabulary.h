@@ -57,6 +57,9 @@ class Vocabulary {
  private:
   int dimension_ = 0;
   std::vector<float> words_;
+  // words_ transposed (dimension x num_words): Assign sums every word's distance at once, over the
+  // dimensions in order, so each word's sum is the same float a word-by-word loop gives.
+  std::vector<float> words_by_dimension_;
   float sigma2_ = 1.f;
   int soft_assignments_ = 3;
 };

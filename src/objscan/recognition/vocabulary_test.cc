@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
+#include <vector>
 
 namespace objscan::recognition {
 namespace {
@@ -79,6 +82,52 @@ TEST(VocabularyTest, SoftAssignmentIsNearestFirstAndSumsToOne) {
   // An all-zero descriptor carries no information and gets no word.
   const std::vector<float> zero(8, 0.f);
   EXPECT_EQ(v.Assign(zero.data(), w), 0);
+}
+
+// The soft assignment is exactly (bit for bit) what a word-by-word scalar loop gives: the m nearest
+// words by squared distance summed in dimension order, ties to the lower word, and Gaussian weights
+// from those distances. 128 words of 33 dimensions (an FPFH vocabulary's size; 128 is not a multiple
+// of every packet width's tail) and 130 words (a tail), on random descriptors.
+TEST(VocabularyTest, AssignmentIsExactlyTheWordByWordLoops) {
+  for (int num_words : {128, 130}) {
+    const int dimension = 33;
+    Rng rng(static_cast<std::uint64_t>(num_words));
+    std::vector<float> words(static_cast<std::size_t>(num_words) * dimension);
+    for (auto& x : words) x = static_cast<float>(rng.Uniform(0.0, 0.4));
+    const float sigma2 = 0.05f;
+    const int m = 3;
+    const Vocabulary v(dimension, words, sigma2, m);
+    for (int q = 0; q < 200; ++q) {
+      std::vector<float> raw(dimension);
+      for (auto& x : raw) x = static_cast<float>(rng.Uniform(0.0, 10.0));
+      if (q % 50 == 0) raw.assign(dimension, 1.f);  // many words at similar distances
+      std::vector<float> x(dimension);
+      ASSERT_TRUE(HellingerMap(raw.data(), dimension, x.data()));
+      // Reference: the loops Assign replaced.
+      std::vector<std::pair<float, int>> d2;
+      for (int w = 0; w < num_words; ++w) {
+        float s = 0.f;
+        for (int d = 0; d < dimension; ++d) {
+          const float e = x[d] - words[static_cast<std::size_t>(w) * dimension + d];
+          s += e * e;
+        }
+        d2.emplace_back(s, w);
+      }
+      std::stable_sort(d2.begin(), d2.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      double total = 0.0;
+      std::vector<float> weight(m);
+      for (int i = 0; i < m; ++i) {
+        weight[i] = static_cast<float>(std::exp(-(d2[i].first - d2[0].first) / (2.0 * sigma2)));
+        total += weight[i];
+      }
+      WordAssignment out[8];
+      ASSERT_EQ(v.Assign(raw.data(), out), m);
+      for (int i = 0; i < m; ++i) {
+        EXPECT_EQ(out[i].word, d2[i].second) << "query " << q << ", rank " << i;
+        EXPECT_EQ(out[i].weight, static_cast<float>(weight[i] / total)) << "query " << q << ", rank " << i;
+      }
+    }
+  }
 }
 
 }  // namespace
