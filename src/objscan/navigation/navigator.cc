@@ -146,23 +146,95 @@ bool Navigator::LineOfSight(const Eigen::Vector2d& a, const Eigen::Vector2d& b) 
   return true;
 }
 
-bool Navigator::StartFrom(const Eigen::Vector2d& xy, Eigen::Vector2d* start_xy) const {
+bool Navigator::StartFrom(const Eigen::Vector2d& xy, Eigen::Vector2d* start_xy,
+                          std::vector<Eigen::Vector2d>* via) const {
+  if (via != nullptr) via->clear();
   if (IsFree(xy)) {
     *start_xy = xy;
     return true;
   }
-  return options_.start_escape_m > 0.0 && xy.allFinite() && NearestFree(xy, options_.start_escape_m, start_xy);
+  if (!xy.allFinite()) return false;
+  if (options_.start_escape_m > 0.0 && NearestFree(xy, options_.start_escape_m, start_xy)) return true;
+  if (!(options_.start_escape_route_m > 0.0)) return false;
+  std::vector<Eigen::Vector2d> route = EscapeRoute(xy, options_.start_escape_route_m);
+  if (route.empty()) return false;
+  *start_xy = route.back();
+  if (via != nullptr) {
+    route.pop_back();
+    *via = std::move(route);
+  }
+  return true;
+}
+
+std::vector<Eigen::Vector2d> Navigator::EscapeRoute(const Eigen::Vector2d& xy, double max_m) const {
+  std::vector<Eigen::Vector2d> route;
+  if (!xy.allFinite() || !(max_m > 0.0)) return route;
+  const Eigen::Vector2i c = grid_.CellOf(xy);
+  if (!grid_.Contains(c.x(), c.y()) || grid_.At(c.x(), c.y()) == CellState::kOccupied) return route;
+  // Dijkstra in a window of max_m around xy's cell (costs in cells, octile moves, ties by index).
+  const int reach = static_cast<int>(std::ceil(max_m / grid_.cell_size_m));
+  const double max_cells = max_m / grid_.cell_size_m;
+  const int x0 = c.x() - reach, y0 = c.y() - reach, side = 2 * reach + 1;
+  const auto local = [&](int ix, int iy) { return static_cast<std::size_t>((iy - y0) * side + (ix - x0)); };
+  std::vector<double> cost(static_cast<std::size_t>(side) * side, kInf);
+  std::vector<std::int32_t> parent(cost.size(), -1);
+  using Entry = std::pair<double, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  cost[local(c.x(), c.y())] = 0.0;
+  open.emplace(0.0, local(c.x(), c.y()));
+  std::int64_t found = -1;
+  while (!open.empty()) {
+    const auto [d, index] = open.top();
+    open.pop();
+    if (d > cost[index]) continue;
+    const int ix = x0 + static_cast<int>(index % side), iy = y0 + static_cast<int>(index / side);
+    if (CellFree(ix, iy)) {
+      found = static_cast<std::int64_t>(index);
+      break;
+    }
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const int jx = ix + dx, jy = iy + dy;
+        if (std::abs(jx - c.x()) > reach || std::abs(jy - c.y()) > reach || !grid_.Contains(jx, jy)) continue;
+        if (grid_.At(jx, jy) == CellState::kOccupied) continue;
+        // A diagonal move must not cut the corner of an occupied cell.
+        if (dx != 0 && dy != 0 &&
+            (grid_.At(ix + dx, iy) == CellState::kOccupied || grid_.At(ix, iy + dy) == CellState::kOccupied)) {
+          continue;
+        }
+        const double next = d + (dx != 0 && dy != 0 ? kSqrt2 : 1.0);
+        if (next > max_cells) continue;
+        const std::size_t j = local(jx, jy);
+        if (next < cost[j]) {
+          cost[j] = next;
+          parent[j] = static_cast<std::int32_t>(index);
+          open.emplace(next, j);
+        }
+      }
+    }
+  }
+  if (found < 0) return route;
+  for (std::int64_t i = found; i >= 0 && static_cast<std::size_t>(i) != local(c.x(), c.y());
+       i = parent[static_cast<std::size_t>(i)]) {
+    route.push_back(grid_.CellCenter(x0 + static_cast<int>(i % side), y0 + static_cast<int>(i / side)));
+  }
+  std::reverse(route.begin(), route.end());
+  return route;
 }
 
 Path2D Navigator::Plan(const Eigen::Vector2d& start, const Eigen::Vector2d& goal) const {
   Path2D path;
   if (!IsFree(start)) {
     Eigen::Vector2d escape;
-    if (StartFrom(start, &escape)) {
+    std::vector<Eigen::Vector2d> via;
+    if (StartFrom(start, &escape, &via)) {
       path = Plan(escape, goal);
       if (path.ok()) {
-        path.waypoints.insert(path.waypoints.begin(), start);
-        path.grid_length_m += (escape - start).norm();
+        via.insert(via.begin(), start);
+        path.waypoints.insert(path.waypoints.begin(), via.begin(), via.end());
+        via.push_back(escape);
+        path.grid_length_m += PolylineLength(via);
         path.length_m = PolylineLength(path.waypoints);
       }
       return path;

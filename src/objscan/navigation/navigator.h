@@ -20,6 +20,11 @@ struct NavigatorOptions {
   // inflation radius) is left by the shortest straight move of at most this length to a free cell;
   // 0 = a blocked start is kStartBlocked.
   double start_escape_m = 0.3;
+  // When no free cell is that near (a robot wedged between furniture it saw only once there, or
+  // standing on floor its camera never saw), it leaves along the shortest route of at most this
+  // length through cells not seen occupied (blocked only by inflation or unknown) to a free cell: it
+  // came in that way. 0 = no route (such a start is kStartBlocked).
+  double start_escape_route_m = 1.0;
 
   template <class V>
   void Visit(V& v) {
@@ -27,6 +32,7 @@ struct NavigatorOptions {
     v("min_obstacle_height_m", min_obstacle_height_m);
     v("smooth_path", smooth_path);
     v("start_escape_m", start_escape_m);
+    v("start_escape_route_m", start_escape_route_m);
   }
   void Validate() const;
 };
@@ -74,8 +80,15 @@ class Navigator {
   Path2D Plan(const Eigen::Vector2d& start, const Eigen::Vector2d& goal) const;
 
   // Where a robot at xy starts moving from: xy itself when free, else the nearest free cell within
-  // options().start_escape_m. False when neither exists (a plan from xy is kStartBlocked).
-  bool StartFrom(const Eigen::Vector2d& xy, Eigen::Vector2d* start_xy) const;
+  // options().start_escape_m, else the end of EscapeRoute. False when none exists (a plan from xy is
+  // kStartBlocked). `via` (optional) receives the route's waypoints before the start (empty for xy
+  // itself and for a straight escape).
+  bool StartFrom(const Eigen::Vector2d& xy, Eigen::Vector2d* start_xy, std::vector<Eigen::Vector2d>* via = nullptr) const;
+
+  // The shortest 8-connected route from xy's cell through cells not seen occupied (free, inflated or
+  // unknown) to the nearest free cell, at most max_m long: the cell centres after xy's cell, the free
+  // one last. Empty when there is none (or xy's own cell is occupied or outside the grid).
+  std::vector<Eigen::Vector2d> EscapeRoute(const Eigen::Vector2d& xy, double max_m) const;
 
   // Grid path length (metres, 8-connected, same moves as A*) from start to every cell; infinity where
   // unreachable; all infinity when start is not free. Index as grid().Index(ix, iy).

@@ -153,7 +153,82 @@ TEST(NavigatorTest, BlockedStartEscapesToTheNearestFreeCell) {
   EXPECT_LT((path.waypoints[1] - start).norm(), 0.3 + 1e-9);
   NavigatorOptions strict;
   strict.start_escape_m = 0.0;
+  strict.start_escape_route_m = 0.0;
   EXPECT_EQ(Navigator(source, kRadius, kHeight, strict).Plan(start, {1, 1}).status, PlanStatus::kStartBlocked);
+  // Without the straight move, the route through the inflated cells leaves as well.
+  strict.start_escape_route_m = 1.0;
+  const Path2D routed = Navigator(source, kRadius, kHeight, strict).Plan(start, {1, 1});
+  ASSERT_TRUE(routed.ok());
+  EXPECT_EQ(routed.waypoints.front(), start);
+}
+
+// A grid given cell by cell (the navigator's input, without a scene).
+class GridSource final : public OccupancySource {
+ public:
+  explicit GridSource(OccupancyGrid2D grid) : grid_(std::move(grid)) {}
+  OccupancyGrid2D Grid(double, double, double) const override { return grid_; }
+
+ private:
+  OccupancyGrid2D grid_;
+};
+
+// A robot wedged in a corridor 0.5 m wide between two occupied walls 2 m long, on floor its
+// camera never saw (unknown): no free cell lies within start_escape_m, so it leaves along the
+// corridor, the way it came, through unknown and inflated cells but never an occupied one, and plans
+// on from there. Without the route (start_escape_route_m 0), or with the corridor closed by an
+// occupied cell, its start is blocked.
+TEST(NavigatorTest, WedgedStartLeavesAlongARouteThroughCellsNotSeenOccupied) {
+  OccupancyGrid2D grid = OccupancyGrid2D::Covering({0.0, 0.0}, {4.0, 4.0}, 0.05, CellState::kFree);
+  auto set = [&](double x0, double y0, double x1, double y1, CellState state) {
+    for (int iy = 0; iy < grid.height; ++iy) {
+      for (int ix = 0; ix < grid.width; ++ix) {
+        const Eigen::Vector2d c = grid.CellCenter(ix, iy);
+        if (c.x() > x0 && c.x() < x1 && c.y() > y0 && c.y() < y1) grid.cells[grid.Index(ix, iy)] = state;
+      }
+    }
+  };
+  set(2.0, 1.0, 4.0, 1.5, CellState::kOccupied);  // walls along the corridor y in [1.5, 2.0]
+  set(2.0, 2.0, 4.0, 2.5, CellState::kOccupied);
+  set(2.0, 1.5, 3.2, 2.0, CellState::kUnknown);   // its floor, unseen
+  const Eigen::Vector2d wedged(2.6, 1.75);  // 0.74 m from the first free cell, at x = 1.86 m
+  const Navigator nav(GridSource(grid), kRadius, kHeight);
+  ASSERT_FALSE(nav.IsFree(wedged));
+  Eigen::Vector2d nearest;
+  ASSERT_FALSE(nav.NearestFree(wedged, nav.options().start_escape_m, &nearest)) << "no free cell within 0.3 m";
+
+  const std::vector<Eigen::Vector2d> route = nav.EscapeRoute(wedged, 1.0);
+  ASSERT_FALSE(route.empty());
+  EXPECT_TRUE(nav.IsFree(route.back()));
+  for (std::size_t i = 0; i + 1 < route.size(); ++i) EXPECT_FALSE(nav.IsFree(route[i])) << "stops at the first free cell";
+  double length = (route.front() - wedged).norm();
+  for (std::size_t i = 0; i < route.size(); ++i) {
+    const Eigen::Vector2i c = grid.CellOf(route[i]);
+    EXPECT_NE(grid.At(c.x(), c.y()), CellState::kOccupied) << i;
+    if (i > 0) length += (route[i] - route[i - 1]).norm();
+  }
+  EXPECT_LT(route.back().x(), 2.0) << "out of the corridor's open end";
+  EXPECT_LE(length, 1.0 + 0.05);
+
+  const Path2D path = nav.Plan(wedged, {0.5, 0.5});
+  ASSERT_TRUE(path.ok());
+  EXPECT_EQ(path.waypoints.front(), wedged);
+  for (const Eigen::Vector2d& p : Sample(path.waypoints, 0.02)) {
+    const Eigen::Vector2i c = grid.CellOf(p);
+    EXPECT_NE(grid.At(c.x(), c.y()), CellState::kOccupied) << p.transpose();
+  }
+  Eigen::Vector2d start;
+  std::vector<Eigen::Vector2d> via;
+  ASSERT_TRUE(nav.StartFrom(wedged, &start, &via));
+  EXPECT_EQ(start, route.back());
+  EXPECT_EQ(via.size() + 1, route.size());
+
+  NavigatorOptions no_route;
+  no_route.start_escape_route_m = 0.0;
+  EXPECT_EQ(Navigator(GridSource(grid), kRadius, kHeight, no_route).Plan(wedged, {0.5, 0.5}).status,
+            PlanStatus::kStartBlocked);
+  EXPECT_TRUE(nav.EscapeRoute(wedged, 0.3).empty()) << "the open end is farther than 0.3 m";
+  set(1.9, 1.5, 2.1, 2.0, CellState::kOccupied);  // the corridor closed
+  EXPECT_EQ(Navigator(GridSource(grid), kRadius, kHeight).Plan(wedged, {0.5, 0.5}).status, PlanStatus::kStartBlocked);
 }
 
 TEST(NavigatorTest, BlockedStartAndGoalAreStatuses) {

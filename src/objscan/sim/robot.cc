@@ -76,7 +76,8 @@ ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const navigation:
   const Eigen::Vector3d camera = T_world_camera.translation();
   const Eigen::Vector2d camera_xy = camera.head<2>();
   Eigen::Vector2d start_xy;
-  if (!navigator.StartFrom(base_.xy_m, &start_xy)) {  // a blocked start may back out to a free cell
+  std::vector<Eigen::Vector2d> escape_via;
+  if (!navigator.StartFrom(base_.xy_m, &start_xy, &escape_via)) {  // a blocked start may back out to a free cell
     plan.status = ReachStatus::kStartBlocked;
     return plan;
   }
@@ -97,7 +98,13 @@ ReachPlan Robot::PlanTo(const geometry::Pose3& T_world_camera, const navigation:
   bool any_free = false;
   // From where the robot can start (its own cell, or the free cell a blocked start backs out to):
   // searching from a blocked cell reaches nothing.
-  const double escape_m = (start_xy - base_.xy_m).norm();
+  double escape_m = 0.0;
+  Eigen::Vector2d escape_from = base_.xy_m;
+  for (const Eigen::Vector2d& p : escape_via) {
+    escape_m += (p - escape_from).norm();
+    escape_from = p;
+  }
+  escape_m += (start_xy - escape_from).norm();
   std::vector<double> path_cost = navigator.PathCosts(start_xy, candidates);
   for (double& c : path_cost) c += escape_m;
   double best_cost = std::numeric_limits<double>::infinity();

@@ -198,8 +198,14 @@ TEST(RobotTest, ABlockedStartWithinTheEscapeRadiusStillReachesFarViews) {
   ASSERT_EQ(plan.status, ReachStatus::kOk) << ReachStatusName(plan.status);
   // The path leaves from the robot's own position.
   EXPECT_LT((plan.path.waypoints.front() - start.xy_m).norm(), 1e-9);
-  // Without the escape the start stays blocked.
+  // Without the straight move, the route through the inflated cells leaves too, and its length counts.
   nav_options.start_escape_m = 0.0;
+  const Navigator routed(source, options.base_radius_m, options.height_m, nav_options);
+  const ReachPlan via_route = robot.PlanTo(far, routed);
+  ASSERT_EQ(via_route.status, ReachStatus::kOk) << ReachStatusName(via_route.status);
+  EXPECT_LT((via_route.path.waypoints.front() - start.xy_m).norm(), 1e-9);
+  // Without either escape the start stays blocked.
+  nav_options.start_escape_route_m = 0.0;
   const Navigator strict(source, options.base_radius_m, options.height_m, nav_options);
   EXPECT_EQ(robot.PlanTo(far, strict).status, ReachStatus::kStartBlocked);
 }
