@@ -422,6 +422,20 @@ std::optional<int> SelectDepthByHeldOutValidation(const std::vector<std::array<f
 
 namespace {
 
+// Training view v of a full model: azimuths evenly around it, alternately at the low and the high
+// elevation; the half views come after the whole ones, turned by half a step.
+struct TrainingView {
+  bool half;
+  double azimuth_rad, elevation_rad;
+};
+TrainingView TrainingViewAt(const CategoryClassifierOptions& options, int v) {
+  const bool half = v >= options.views_per_model;
+  const int u = half ? v - options.views_per_model : v;
+  const int per_ring = half ? options.half_views_per_model : options.views_per_model;
+  return {half, 2.0 * M_PI * (u + (half ? 0.5 : 0.0)) / per_ring,
+          (u % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0};
+}
+
 // A full model whose training views are rendered from its stored mesh (training_views "rendered").
 struct RenderJob {
   const ModelDatabase* database;
@@ -450,14 +464,10 @@ void AddRenderedViews(const std::vector<RenderJob>& jobs, const CategoryClassifi
     const geometry::Aabb3 bounds = geometry::Bounds(model.mesh);
     const int views = options.views_per_model + options.half_views_per_model;
     for (int v = 0; v < views; ++v) {
-      const bool half = v >= options.views_per_model;
-      const int u = half ? v - options.views_per_model : v;
-      const int per_ring = half ? options.half_views_per_model : options.views_per_model;
-      const double azimuth = 2.0 * M_PI * (u + (half ? 0.5 : 0.0)) / per_ring;
-      const double elevation = (u % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
-      geometry::PointCloud surface =
-          ScanSurface(model.mesh, {ViewFrom(bounds, azimuth, elevation, scan)}, scan, /*noise=*/true, &rng);
-      if (half) surface = HalfOf(surface, &rng);
+      const TrainingView view = TrainingViewAt(options, v);
+      geometry::PointCloud surface = ScanSurface(
+          model.mesh, {ViewFrom(bounds, view.azimuth_rad, view.elevation_rad, scan)}, scan, /*noise=*/true, &rng);
+      if (view.half) surface = HalfOf(surface, &rng);
       if (surface.points.size() < 8 || !surface.HasNormals()) continue;
       Rng keypoint_rng(settings.keypoint_seed);  // as Recognizer::Describe
       std::vector<Eigen::Vector3f> points, normals;
@@ -538,13 +548,9 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
       }
       const int views = options.views_per_model + (options.method == "forest" ? options.half_views_per_model : 0);
       for (int v = 0; v < views; ++v) {
-        // Azimuths evenly around the model; alternate views at the low and the high elevation. The
-        // half views come after the whole ones, turned by half a step.
-        const bool half = v >= options.views_per_model;
-        const int u = half ? v - options.views_per_model : v;
-        const int per_ring = half ? options.half_views_per_model : options.views_per_model;
-        const double azimuth = 2.0 * M_PI * (u + (half ? 0.5 : 0.0)) / per_ring;
-        const double elevation = (u % 2 == 0 ? options.low_elevation_deg : options.high_elevation_deg) * M_PI / 180.0;
+        const TrainingView training_view = TrainingViewAt(options, v);
+        const bool half = training_view.half;
+        const double azimuth = training_view.azimuth_rad, elevation = training_view.elevation_rad;
         const Eigen::Vector3f view(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
                                    static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
                                    static_cast<float>(std::sin(elevation)));

@@ -58,14 +58,24 @@ std::vector<geometry::Pose3> RingViews(const geometry::Aabb3& bounds, const Virt
   return views;
 }
 
-ModelScan ScanModel(const geometry::TriangleMesh& mesh, const std::vector<geometry::Pose3>& views,
-                    const VirtualScanOptions& options, bool noise, Rng* rng) {
+namespace {
+
+// The scene a model is scanned in: the mesh alone.
+world::Scene ModelAlone(const geometry::TriangleMesh& mesh) {
   world::Scene scene("virtual-scan");
   world::SceneObject object;
   object.category = world::Category::kOther;
   object.name = "model";
   object.mesh = mesh;
   scene.Add(std::move(object));
+  return scene;
+}
+
+}  // namespace
+
+ModelScan ScanModel(const geometry::TriangleMesh& mesh, const std::vector<geometry::Pose3>& views,
+                    const VirtualScanOptions& options, bool noise, Rng* rng) {
+  const world::Scene scene = ModelAlone(mesh);
   render::SensorOptions sensor = options.sensor;
   sensor.noise = noise;
   const render::DepthCamera camera(scene, sensor);
@@ -85,12 +95,7 @@ ModelScan ScanModel(const geometry::TriangleMesh& mesh, const std::vector<geomet
 
 geometry::PointCloud ScanSurface(const geometry::TriangleMesh& mesh, const std::vector<geometry::Pose3>& views,
                                  const VirtualScanOptions& options, bool noise, Rng* rng) {
-  world::Scene scene("virtual-scan");
-  world::SceneObject object;
-  object.category = world::Category::kOther;
-  object.name = "model";
-  object.mesh = mesh;
-  scene.Add(std::move(object));
+  const world::Scene scene = ModelAlone(mesh);
   render::SensorOptions sensor = options.sensor;
   sensor.noise = noise;
   const render::DepthCamera camera(scene, sensor);
