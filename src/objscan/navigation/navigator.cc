@@ -34,6 +34,7 @@ void NavigatorOptions::Validate() const {
   config::RequirePositive("cell_size_m", cell_size_m);
   config::RequireNonNegative("min_obstacle_height_m", min_obstacle_height_m);
   config::RequireNonNegative("start_escape_m", start_escape_m);
+  config::RequireNonNegative("start_escape_route_m", start_escape_route_m);
 }
 
 const char* PlanStatusName(PlanStatus status) {

@@ -227,6 +227,9 @@ TEST(NavigatorTest, WedgedStartLeavesAlongARouteThroughCellsNotSeenOccupied) {
   EXPECT_EQ(Navigator(GridSource(grid), kRadius, kHeight, no_route).Plan(wedged, {0.5, 0.5}).status,
             PlanStatus::kStartBlocked);
   EXPECT_TRUE(nav.EscapeRoute(wedged, 0.3).empty()) << "the open end is farther than 0.3 m";
+  NavigatorOptions negative;
+  negative.start_escape_route_m = -1.0;
+  EXPECT_THROW(negative.Validate(), InputError);
   set(1.9, 1.5, 2.1, 2.0, CellState::kOccupied);  // the corridor closed
   EXPECT_EQ(Navigator(GridSource(grid), kRadius, kHeight).Plan(wedged, {0.5, 0.5}).status, PlanStatus::kStartBlocked);
 }
