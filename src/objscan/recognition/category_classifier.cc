@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 
 #include <Eigen/Eigenvalues>
 
@@ -19,8 +20,9 @@
 namespace objscan::recognition {
 
 void CategoryClassifierOptions::Validate() const {
-  config::Require(method == "forest" || method == "softmax", "recognition.classifier.method",
-                  "must be 'forest' or 'softmax', not '" + method + "'");
+  config::Require(method == "forest" || method == "softmax" || method == "network" || method == "forest+network",
+                  "recognition.classifier.method",
+                  "must be 'forest', 'softmax', 'network' or 'forest+network', not '" + method + "'");
   config::Require(training_views == "keypoints" || training_views == "rendered", "recognition.classifier.training_views",
                   "must be 'keypoints' or 'rendered', not '" + training_views + "'");
   config::Require(balance == "samples" || balance == "models", "recognition.classifier.balance",
@@ -32,6 +34,7 @@ void CategoryClassifierOptions::Validate() const {
   config::Require(validation_trees >= 1, "recognition.classifier.validation_trees", "must be at least 1");
   config::Require(half_views_per_model >= 0, "recognition.classifier.half_views_per_model", "must be >= 0");
   forest.Validate();
+  network.Validate();
   config::Require(views_per_model >= 0, "recognition.classifier.views_per_model", "must be >= 0");
   config::RequireInRange("recognition.classifier.low_elevation_deg", low_elevation_deg, -89.0, 89.0);
   config::RequireInRange("recognition.classifier.high_elevation_deg", high_elevation_deg, -89.0, 89.0);
@@ -259,8 +262,12 @@ static_assert(kNumRelativeShapeFeatures == 26 &&
 
 CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
                                            const std::vector<world::Category>& labels,
-                                           const CategoryClassifierOptions& options, const std::vector<int>& groups) {
+                                           const CategoryClassifierOptions& options, const std::vector<int>& groups,
+                                           const std::vector<EncodedPointSet>* point_sets) {
   options.Validate();
+  if (options.uses_network() && !features.empty() && (point_sets == nullptr || point_sets->size() != features.size())) {
+    throw std::invalid_argument("CategoryClassifier::Fit: the network needs one point set per sample");
+  }
   CategoryClassifier c;
   if (features.empty() || features.size() != labels.size()) return c;
   std::array<int, world::kNumCategories> count{};
@@ -309,7 +316,25 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
                      : 1.0 / (static_cast<double>(classes) * count[static_cast<std::size_t>(id)]);
   }
   if (classes == 1) return c;
-  if (options.method == "forest") {
+  if (options.uses_network()) {
+    PointNetworkTrainingSet data;
+    data.num_classes = classes;
+    data.num_global_features = options.network_shape_features ? d : 0;
+    for (int i = 0; i < n; ++i) {
+      const EncodedPointSet& set = (*point_sets)[static_cast<std::size_t>(i)];
+      if (set.num_points() == 0) continue;
+      data.sets.push_back(set);
+      if (options.network_shape_features) {
+        const auto& row = features[static_cast<std::size_t>(i)];
+        data.global_features.insert(data.global_features.end(), row.begin(), row.end());
+      }
+      data.labels.push_back(class_of[static_cast<std::size_t>(world::CategoryId(labels[static_cast<std::size_t>(i)]))]);
+      data.weights.push_back(static_cast<float>(w(i) * n));
+    }
+    if (data.num_samples() > 0) c.network_ = PointNetwork::Train(data, options.network);
+    c.network_shape_features_ = options.network_shape_features;
+  }
+  if (options.uses_forest()) {
     ForestTrainingSet data;
     data.num_features = d;
     data.num_classes = classes;
@@ -321,8 +346,8 @@ CategoryClassifier CategoryClassifier::Fit(const std::vector<std::array<float, k
     }
     c.forest_ = RandomForest::Train(data, options.forest);
     c.max_depth_ = options.forest.max_depth;
-    return c;
   }
+  if (options.method != "softmax") return c;
   c.weights_ = Eigen::MatrixXd::Zero(classes, d + 1);
   Eigen::MatrixXd p(n, classes);
   for (int it = 0; it < options.iterations; ++it) {
@@ -359,6 +384,7 @@ std::optional<int> SelectDepthByHeldOutValidation(const std::vector<std::array<f
     }
   }
   CategoryClassifierOptions fit_options = options;
+  fit_options.method = "forest";  // the depth is the forest's
   fit_options.validation_depths.clear();
   fit_options.forest.num_trees = std::min(options.forest.num_trees, options.validation_trees);
   // Each fold's training part, gathered once for every depth.
@@ -450,9 +476,10 @@ struct RenderJob {
 // any thread count.
 void AddRenderedViews(const std::vector<RenderJob>& jobs, const CategoryClassifierOptions& options,
                       std::vector<std::array<float, kNumShapeFeatures>>* features, std::vector<world::Category>* labels,
-                      std::vector<int>* groups, std::vector<int>* sources) {
+                      std::vector<int>* groups, std::vector<int>* sources, std::vector<EncodedPointSet>* point_sets) {
   if (jobs.empty()) return;
   std::vector<std::vector<std::array<float, kNumShapeFeatures>>> per_job(jobs.size());
+  std::vector<std::vector<EncodedPointSet>> sets_per_job(jobs.size());
   VirtualScanOptions scan;
   scan.sensor.threads = 1;  // parallel over models instead
   const int n_jobs = static_cast<int>(jobs.size());
@@ -482,9 +509,16 @@ void AddRenderedViews(const std::vector<RenderJob>& jobs, const CategoryClassifi
             model.support_heights_m[static_cast<std::size_t>(rng.UniformInt(0, static_cast<int>(model.support_heights_m.size()) - 1))]);
       }
       per_job[static_cast<std::size_t>(j)].push_back(ShapeFeatures(points, normals, floor_z_m));
+      if (point_sets != nullptr) {
+        sets_per_job[static_cast<std::size_t>(j)].push_back(
+            EncodePointSet(points, normals, floor_z_m, options.network.max_points));
+      }
     }
   });
   for (std::size_t j = 0; j < jobs.size(); ++j) {
+    if (point_sets != nullptr) {
+      for (auto& set : sets_per_job[j]) point_sets->push_back(std::move(set));
+    }
     for (const auto& f : per_job[j]) {
       features->push_back(f);
       labels->push_back(jobs[j].entry->category);
@@ -505,6 +539,7 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
   options.Validate();
   std::vector<std::array<float, kNumShapeFeatures>> features;
   std::vector<world::Category> labels;
+  std::vector<EncodedPointSet> point_sets;  // methods with a network: each sample's points
   std::vector<Eigen::Vector3f> seen_points, seen_normals, half_points, half_normals;
   Rng rng(options.seed);
   // A height above the floor the entry's model stands at in the database's scenes (0 when unknown),
@@ -523,7 +558,9 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
   auto add = [&](const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
                  const DatabaseEntry& e) {
     if (points.size() < 8) return;
-    features.push_back(ShapeFeatures(points, normals, floor_z_of(e)));
+    const double floor_z_m = floor_z_of(e);
+    features.push_back(ShapeFeatures(points, normals, floor_z_m));
+    if (options.uses_network()) point_sets.push_back(EncodePointSet(points, normals, floor_z_m, options.network.max_points));
     labels.push_back(e.category);
     groups.push_back(group_base + e.model_index);
     sources.push_back(source);
@@ -536,7 +573,7 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
     for (const DatabaseEntry& e : database->entries()) {
       if (e.keypoints.size() != e.keypoint_normals.size()) continue;
       if (e.kind != EntryKind::kFullModel) {
-        if (options.include_pieces && options.method == "forest") add(e.keypoints, e.keypoint_normals, e);
+        if (options.include_pieces && options.method != "softmax") add(e.keypoints, e.keypoint_normals, e);
         continue;
       }
       add(e.keypoints, e.keypoint_normals, e);
@@ -546,7 +583,7 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
         render_jobs.push_back({database, &e, source, group_base + e.model_index});
         continue;
       }
-      const int views = options.views_per_model + (options.method == "forest" ? options.half_views_per_model : 0);
+      const int views = options.views_per_model + (options.method != "softmax" ? options.half_views_per_model : 0);
       for (int v = 0; v < views; ++v) {
         const TrainingView training_view = TrainingViewAt(options, v);
         const bool half = training_view.half;
@@ -583,17 +620,37 @@ CategoryClassifier CategoryClassifier::Train(const std::vector<const ModelDataba
       }
     }
   }
-  AddRenderedViews(render_jobs, options, &features, &labels, &groups, &sources);
-  if (options.method != "forest" || options.validation_depths.empty() || features.empty()) {
-    return Fit(features, labels, options, groups);
+  AddRenderedViews(render_jobs, options, &features, &labels, &groups, &sources,
+                   options.uses_network() ? &point_sets : nullptr);
+  if (!options.uses_forest() || options.validation_depths.empty() || features.empty()) {
+    return Fit(features, labels, options, groups, &point_sets);
   }
   CategoryClassifierOptions fit_options = options;
   fit_options.forest.max_depth = SelectDepthByHeldOutValidation(features, labels, groups, sources, options)
                                      .value_or(options.forest.max_depth);
-  return Fit(features, labels, fit_options, groups);
+  return Fit(features, labels, fit_options, groups, &point_sets);
+}
+
+CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::vector<Eigen::Vector3f>& points,
+                                                               const std::vector<Eigen::Vector3f>& normals,
+                                                               double floor_z_m) const {
+  const std::array<float, kNumShapeFeatures> features = ShapeFeatures(points, normals, floor_z_m);
+  if (!network_.trained()) return Classify(features);
+  Probabilities out{};
+  std::vector<double> p =
+      network_.Predict(EncodePointSet(points, normals, floor_z_m, network_.max_points()),
+                       network_shape_features_ ? features.data() : nullptr);
+  if (p.empty()) return out;  // no finite point
+  if (forest_.trained()) {
+    const std::vector<double> f = forest_.Predict(features.data());
+    for (std::size_t c = 0; c < p.size(); ++c) p[c] = 0.5 * (p[c] + f[c]);
+  }
+  for (std::size_t c = 0; c < classes_.size(); ++c) out[static_cast<std::size_t>(world::CategoryId(classes_[c]))] = p[c];
+  return out;
 }
 
 CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<float, kNumShapeFeatures>& features) const {
+  if (network_.trained()) throw std::logic_error("CategoryClassifier::Classify: a classifier with a network needs the points");
   Probabilities out{};
   if (!trained()) return out;
   if (classes_.size() == 1) {
@@ -620,7 +677,7 @@ CategoryClassifier::Probabilities CategoryClassifier::Classify(const std::array<
 
 namespace {
 
-constexpr io::BinaryFileFormat kClassifierFormat = {"OBJSCCL\n", 2, "category classifier",
+constexpr io::BinaryFileFormat kClassifierFormat = {"OBJSCCL\n", 3, "category classifier",
                                                     "delete it: it is trained again"};
 
 void WriteMatrix(const Eigen::MatrixXd& m, io::BinaryWriter* w) {
@@ -645,11 +702,17 @@ void CategoryClassifier::Save(const std::string& path) const {
   w.Pod(static_cast<std::int32_t>(kNumShapeFeatures));
   w.Pod(static_cast<std::uint32_t>(classes_.size()));
   for (world::Category c : classes_) w.String(world::CategoryName(c));
-  w.Pod(static_cast<std::uint8_t>(forest_.trained() ? 1 : 0));
+  // The learners: 1 the forest, 2 the network (3 both), 0 softmax weights.
+  w.Pod(static_cast<std::uint8_t>((forest_.trained() ? 1 : 0) | (network_.trained() ? 2 : 0)));
   if (forest_.trained()) {
     w.Pod(static_cast<std::int32_t>(max_depth_));
     forest_.Write(&w);
-  } else {
+  }
+  if (network_.trained()) {
+    w.Pod(static_cast<std::uint8_t>(network_shape_features_ ? 1 : 0));
+    network_.Write(&w);
+  }
+  if (!forest_.trained() && !network_.trained()) {
     WriteMatrix(mean_, &w);
     WriteMatrix(inverse_std_, &w);
     WriteMatrix(weights_, &w);
@@ -670,20 +733,32 @@ CategoryClassifier CategoryClassifier::Load(const std::string& path) {
     if (!category) r.Fail("unknown category '" + name + "'");
     c.classes_.push_back(*category);
   }
-  if (r.Pod<std::uint8_t>("learner") == 1) {
+  const std::uint8_t learners = r.Pod<std::uint8_t>("learner");
+  if (learners > 3) r.Fail("an unknown learner");
+  if (learners & 1) {
     c.max_depth_ = r.Pod<std::int32_t>("max_depth");
     if (c.max_depth_ < 1) r.Fail("a forest depth below 1");
     c.forest_ = RandomForest::Read(&r);
     if (c.forest_.num_features() != kNumShapeFeatures || c.forest_.num_classes() != static_cast<int>(num_classes))
       r.Fail("the forest's features or classes disagree with the classifier's");
-  } else if (num_classes > 1) {
+  }
+  if (learners & 2) {
+    const std::uint8_t shape_features = r.Pod<std::uint8_t>("network inputs");
+    if (shape_features > 1) r.Fail("an unknown network input");
+    c.network_shape_features_ = shape_features == 1;
+    c.network_ = PointNetwork::Read(&r);
+    if (c.network_.num_classes() != static_cast<int>(num_classes) ||
+        c.network_.num_global_features() != (c.network_shape_features_ ? kNumShapeFeatures : 0))
+      r.Fail("the network's inputs or classes disagree with the classifier's");
+  }
+  if (learners == 0 && num_classes > 1) {
     c.mean_ = ReadMatrix(&r);
     c.inverse_std_ = ReadMatrix(&r);
     c.weights_ = ReadMatrix(&r);
     if (c.mean_.size() != kNumShapeFeatures || c.inverse_std_.size() != kNumShapeFeatures ||
         c.weights_.rows() != static_cast<Eigen::Index>(num_classes) || c.weights_.cols() != kNumShapeFeatures + 1)
       r.Fail("softmax weights of the wrong shape");
-  } else {
+  } else if (learners == 0) {  // one class: empty matrices
     ReadMatrix(&r);
     ReadMatrix(&r);
     ReadMatrix(&r);

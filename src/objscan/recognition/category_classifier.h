@@ -12,9 +12,10 @@
 // half of a view cut by a random vertical plane (pieces a live scan sees before the rest), and the
 // database's own component and pair entries (the pre-segmented pieces of the model); each sample
 // stands at one of the heights above the floor its model stands at in the database's scenes.
-// Learners (CategoryClassifierOptions::method): a random forest (random_forest.h; the default) or
-// multinomial logistic regression on standardised features (the first version), both class-balanced
-// (the database's composition is not a prior).
+// Learners (CategoryClassifierOptions::method): a random forest (random_forest.h; the default),
+// multinomial logistic regression on standardised features (the first version), a point network that
+// reads the sample's points themselves (point_network.h), or the forest and the network together
+// (the mean of their posteriors); all class-balanced (the database's composition is not a prior).
 #include <array>
 #include <cstdint>
 #include <string>
@@ -23,6 +24,7 @@
 #include <Eigen/Core>
 
 #include "objscan/common/config.h"
+#include "objscan/recognition/point_network.h"
 #include "objscan/recognition/random_forest.h"
 #include "objscan/world/category.h"
 
@@ -31,7 +33,9 @@ namespace objscan::recognition {
 class ModelDatabase;
 
 struct CategoryClassifierOptions {
-  std::string method = "forest";     // "forest" (random forest) or "softmax" (logistic regression)
+  // "forest" (random forest), "softmax" (logistic regression), "network" (point network) or
+  // "forest+network" (the mean of the forest's and the network's posteriors).
+  std::string method = "forest";
   int views_per_model = 16;          // training views per full model, half at each elevation
   double low_elevation_deg = 15.0;   // the two elevations the views look down from
   double high_elevation_deg = 45.0;
@@ -66,6 +70,10 @@ struct CategoryClassifierOptions {
   // same training data and options (classifier_cache.h): the same classifier without training again.
   bool cache = true;
   RandomForestOptions forest;
+  // methods with "network": the point network, and whether its head reads ShapeFeatures beside the
+  // points' own description.
+  PointNetworkOptions network;
+  bool network_shape_features = true;
   // method "softmax": full-batch gradient descent from zero.
   int iterations = 300;
   double learning_rate = 0.5;
@@ -88,11 +96,15 @@ struct CategoryClassifierOptions {
     v("validation_trees", validation_trees);
     v("cache", cache);
     v("forest", forest);
+    v("network", network);
+    v("network_shape_features", network_shape_features);
     v("iterations", iterations);
     v("learning_rate", learning_rate);
     v("l2_weight", l2_weight);
   }
   void Validate() const;
+  bool uses_forest() const { return method == "forest" || method == "forest+network"; }
+  bool uses_network() const { return method == "network" || method == "forest+network"; }
 };
 
 // The shape features of an upright point set with unit normals (Z up, metres; normals may face
@@ -125,17 +137,20 @@ class CategoryClassifier {
   // From features and labels directly (rows of `features` are samples); what Train calls.
   // `groups` (optional, one per sample): with balance "models", the samples of one group (a model)
   // share one weight, every group of a class weighing the same.
+  // `point_sets` (one per sample, EncodePointSet at options.network.max_points) are needed by the
+  // methods with a network.
   static CategoryClassifier Fit(const std::vector<std::array<float, kNumShapeFeatures>>& features,
                                 const std::vector<world::Category>& labels, const CategoryClassifierOptions& options,
-                                const std::vector<int>& groups = {});
+                                const std::vector<int>& groups = {},
+                                const std::vector<EncodedPointSet>* point_sets = nullptr);
 
   bool trained() const { return !classes_.empty(); }
-  // P(category | shape); 0 for categories the training set lacks. All zeros when not trained.
+  // P(category | shape); 0 for categories the training set lacks. All zeros when not trained. A
+  // classifier with a network needs the points: from features alone it throws std::logic_error.
   Probabilities Classify(const std::array<float, kNumShapeFeatures>& features) const;
   Probabilities Classify(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
-                         double floor_z_m = 0.0) const {
-    return Classify(ShapeFeatures(points, normals, floor_z_m));
-  }
+                         double floor_z_m = 0.0) const;
+  bool has_network() const { return network_.trained(); }
   const std::vector<world::Category>& classes() const { return classes_; }
   // The forest's depth limit it was grown with (validation_depths' choice or forest.max_depth); 0 for
   // "softmax" or an untrained classifier.
@@ -154,6 +169,9 @@ class CategoryClassifier {
   Eigen::MatrixXd weights_;             // classes x (features + 1), the last column the bias
   // method "forest"
   RandomForest forest_;
+  // methods with "network"
+  PointNetwork network_;
+  bool network_shape_features_ = true;
 };
 
 }  // namespace objscan::recognition

@@ -150,15 +150,21 @@ TEST(CategoryClassifierTest, OneCategoryIsAlwaysTheAnswerAndNoDataTrainsNothing)
 
 // Trained on a database of five analytic shapes (one model each), the recognizer names views of
 // them it never saw (noisy surface points, from above at 30 degrees, every 45 degrees around)
-// and halves of such views, and the forest comes out the same at any thread count.
-TEST(CategoryClassifierTest, TrainedOnAShapeDatabaseNamesUnseenViewsAndHalves) {
+// and halves of such views, and comes out the same at any thread count; whatever its learner.
+class CategoryClassifierMethodTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CategoryClassifierMethodTest, TrainedOnAShapeDatabaseNamesUnseenViewsAndHalves) {
   const ModelDatabase db = BuildDatabaseFromScans(testing::ShapeModels(0.01), testing::SmallDatabaseOptions());
   CategoryClassifierOptions options;
+  options.method = GetParam();
   options.forest.num_trees = 24;
   options.forest.threads = 1;
+  options.network.threads = 1;
   const CategoryClassifier classifier = CategoryClassifier::Train(db, options);
   ASSERT_TRUE(classifier.trained());
+  EXPECT_EQ(classifier.has_network(), options.uses_network());
   options.forest.threads = 3;
+  options.network.threads = 3;
   const CategoryClassifier threaded = CategoryClassifier::Train(db, options);
   const std::vector<std::pair<testing::ShapeFn, world::Category>> shapes = {
       {&testing::ChairLike, world::Category::kChair}, {&testing::TableLike, world::Category::kTable},
@@ -201,7 +207,18 @@ TEST(CategoryClassifierTest, TrainedOnAShapeDatabaseNamesUnseenViewsAndHalves) {
   }
   EXPECT_GE(right, total * 9 / 10) << right << " of " << total << " views";
   EXPECT_GE(half_right, total * 7 / 10) << half_right << " of " << total << " halves";
+  if (classifier.has_network()) {  // the network needs the points, not only their features
+    std::vector<Eigen::Vector3f> points_of_a_chair, normals_of_a_chair;
+    testing::ChairLike(0.02, &points_of_a_chair, &normals_of_a_chair);
+    EXPECT_THROW(classifier.Classify(ShapeFeatures(points_of_a_chair, normals_of_a_chair)), std::logic_error);
+  }
 }
+
+INSTANTIATE_TEST_SUITE_P(Learners, CategoryClassifierMethodTest, ::testing::Values("forest", "network", "forest+network"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           return std::string(info.param) == "forest+network" ? std::string("forest_network")
+                                                                               : std::string(info.param);
+                         });
 
 // The forest's depth is chosen by held-out validation. Two databases are two sources, each held out
 // in turn: stumps (depth 1) cannot tell five shapes apart, depth 10 can, so 10 is chosen in either
@@ -306,6 +323,20 @@ TEST(CategoryClassifierTest, OptionsOutOfRangeNameTheirField) {
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("recognition.classifier.iterations"), std::string::npos) << e.what();
   }
+  options = CategoryClassifierOptions();
+  options.network.max_points = 2;
+  try {
+    options.Validate();
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("recognition.classifier.network.max_points"), std::string::npos) << e.what();
+  }
+  std::vector<EncodedPointSet> no_sets;
+  options = CategoryClassifierOptions();
+  options.method = "network";
+  Rng rng(1);
+  EXPECT_THROW(CategoryClassifier::Fit({RandomBox(true, &rng)}, {world::Category::kBed}, options, {}, &no_sets),
+               std::invalid_argument);
   options = CategoryClassifierOptions();
   options.method = "svm";
   EXPECT_THROW(options.Validate(), InputError);

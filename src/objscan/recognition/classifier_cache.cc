@@ -71,6 +71,7 @@ std::string ClassifierCacheKey(const std::vector<const ModelDatabase*>& database
   key.Bytes(reinterpret_cast<const char*>(probe.data()), sizeof(probe));
   CategoryClassifierOptions keyed = options;
   keyed.forest.threads = 0;  // the same forest at any thread count
+  keyed.network.threads = 0;  // the same network too
   keyed.extra_training_databases.clear();  // already in `databases`
   keyed.cache = true;
   key.String(config::ToYaml(config::Dump(keyed)));

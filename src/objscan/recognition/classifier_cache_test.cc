@@ -16,24 +16,31 @@ namespace objscan::recognition {
 namespace {
 
 // Probes: views of the analytic shapes the database holds, and a shape it does not.
-std::vector<std::array<float, kNumShapeFeatures>> Probes() {
-  std::vector<std::array<float, kNumShapeFeatures>> out;
+struct ProbeSet {
+  std::vector<Eigen::Vector3f> points, normals;
+};
+std::vector<ProbeSet> ProbeSets() {
+  std::vector<ProbeSet> out;
   for (testing::ShapeFn shape : {&testing::ChairLike, &testing::TableLike, &testing::ShelfLike, &testing::SofaLike,
                                  &testing::CabinetLike}) {
-    std::vector<Eigen::Vector3f> points, normals;
-    shape(0.02, &points, &normals);
-    out.push_back(ShapeFeatures(points, normals));
-    std::vector<Eigen::Vector3f> front, front_normals;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (normals[i].x() <= 0.1f) continue;
-      front.push_back(points[i]);
-      front_normals.push_back(normals[i]);
+    ProbeSet whole, front;
+    shape(0.02, &whole.points, &whole.normals);
+    for (std::size_t i = 0; i < whole.points.size(); ++i) {
+      if (whole.normals[i].x() <= 0.1f) continue;
+      front.points.push_back(whole.points[i]);
+      front.normals.push_back(whole.normals[i]);
     }
-    out.push_back(ShapeFeatures(front, front_normals));
+    out.push_back(whole);
+    out.push_back(front);
   }
-  std::vector<Eigen::Vector3f> points, normals;
-  testing::BoxSurface({0.0, 0.0, 0.0}, {2.0, 0.3, 0.4}, 0.03, &points, &normals);
-  out.push_back(ShapeFeatures(points, normals));
+  ProbeSet box;
+  testing::BoxSurface({0.0, 0.0, 0.0}, {2.0, 0.3, 0.4}, 0.03, &box.points, &box.normals);
+  out.push_back(box);
+  return out;
+}
+std::vector<std::array<float, kNumShapeFeatures>> Probes() {
+  std::vector<std::array<float, kNumShapeFeatures>> out;
+  for (const ProbeSet& probe : ProbeSets()) out.push_back(ShapeFeatures(probe.points, probe.normals));
   return out;
 }
 
@@ -49,6 +56,11 @@ CategoryClassifierOptions SmallOptions(const char* method) {
   options.forest.num_trees = 8;
   options.forest.threads = 1;
   options.iterations = 50;
+  options.network.point_features = 16;
+  options.network.pooled_features = 32;
+  options.network.head_features = 16;
+  options.network.epochs = 2;
+  options.network.threads = 1;
   return options;
 }
 
@@ -63,10 +75,13 @@ TEST_P(ClassifierFileTest, SavedAndLoadedClassifiesTheSame) {
   const CategoryClassifier loaded = CategoryClassifier::Load(dir.File("c.bin"));
   EXPECT_EQ(loaded.classes(), trained.classes());
   EXPECT_EQ(loaded.max_depth(), trained.max_depth());
-  for (const auto& probe : Probes()) EXPECT_EQ(loaded.Classify(probe), trained.Classify(probe));
+  EXPECT_EQ(loaded.has_network(), trained.has_network());
+  for (const ProbeSet& probe : ProbeSets()) {
+    EXPECT_EQ(loaded.Classify(probe.points, probe.normals), trained.Classify(probe.points, probe.normals));
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(Learners, ClassifierFileTest, ::testing::Values("forest", "softmax"));
+INSTANTIATE_TEST_SUITE_P(Learners, ClassifierFileTest, ::testing::Values("forest", "softmax", "network", "forest+network"));
 
 TEST(ClassifierFileTest, UntrainedAndOneClassClassifiersRoundTrip) {
   io::testing::TempDir dir;
@@ -114,7 +129,12 @@ TEST(ClassifierCacheTest, KeyFollowsTheTrainingDataAndOptions) {
   other.forest.threads = 4;
   other.cache = false;
   EXPECT_EQ(ClassifierCacheKey({&db}, other), key);
+  other.network.threads = 3;
+  EXPECT_EQ(ClassifierCacheKey({&db}, other), key);
   other.forest.seed = 2;
+  EXPECT_NE(ClassifierCacheKey({&db}, other), key);
+  other = options;
+  other.network.epochs = 5;
   EXPECT_NE(ClassifierCacheKey({&db}, other), key);
   other = options;
   other.views_per_model = 12;
