@@ -136,6 +136,25 @@ PointNetwork PointNetwork::Initialized(int num_classes, int num_global_features,
   return net;
 }
 
+namespace {
+
+// Back through a dense layer out = in W (+ b), W row-major (n_in x n_out): adds in^T dout to the
+// weights' gradient and writes dout W^T, the gradient of each input, to d_in.
+void DenseBackward(const float* in, int n_in, const float* dout, int n_out, const float* w, float* gw, float* d_in) {
+  for (int i = 0; i < n_in; ++i) {
+    const float* wi = w + static_cast<std::size_t>(i) * n_out;
+    float* gwi = gw + static_cast<std::size_t>(i) * n_out;
+    float d = 0.f;
+    for (int k = 0; k < n_out; ++k) {
+      gwi[k] += in[i] * dout[k];
+      d += wi[k] * dout[k];
+    }
+    d_in[i] = d;
+  }
+}
+
+}  // namespace
+
 double PointNetwork::Backward(const float* x, int n, const float* global, int label, float weight,
                               float* gradient) const {
   const Layout l = layout();
@@ -202,38 +221,21 @@ double PointNetwork::Backward(const float* x, int n, const float* global, int la
         weight * static_cast<float>(logits[static_cast<std::size_t>(k)] - (k == label ? 1.0 : 0.0));
     g[l.b4 + static_cast<std::size_t>(k)] += dlogit[static_cast<std::size_t>(k)];
   }
-  std::vector<float> da3(static_cast<std::size_t>(l.h3), 0.f);
+  std::vector<float> da3(static_cast<std::size_t>(l.h3));
+  DenseBackward(h3.data(), l.h3, dlogit.data(), l.k, p + l.w4, g + l.w4, da3.data());
   for (int j = 0; j < l.h3; ++j) {
-    const float h = h3[static_cast<std::size_t>(j)];
-    float* gw = g + l.w4 + static_cast<std::size_t>(j) * l.k;
-    const float* w = p + l.w4 + static_cast<std::size_t>(j) * l.k;
-    float d = 0.f;
-    for (int k = 0; k < l.k; ++k) {
-      gw[k] += h * dlogit[static_cast<std::size_t>(k)];
-      d += w[k] * dlogit[static_cast<std::size_t>(k)];
-    }
-    if (h > 0.f) da3[static_cast<std::size_t>(j)] = d;
+    if (!(h3[static_cast<std::size_t>(j)] > 0.f)) da3[static_cast<std::size_t>(j)] = 0.f;  // the ReLU
+    g[l.b3 + static_cast<std::size_t>(j)] += da3[static_cast<std::size_t>(j)];
   }
-  for (int j = 0; j < l.h3; ++j) g[l.b3 + static_cast<std::size_t>(j)] += da3[static_cast<std::size_t>(j)];
-  std::vector<float> dpooled(static_cast<std::size_t>(l.h2), 0.f);
-  for (int i = 0; i < l.h2 + l.f; ++i) {
-    const float ui = u[static_cast<std::size_t>(i)];
-    float* gw = g + l.w3 + static_cast<std::size_t>(i) * l.h3;
-    const float* w = p + l.w3 + static_cast<std::size_t>(i) * l.h3;
-    float d = 0.f;
-    for (int j = 0; j < l.h3; ++j) {
-      gw[j] += ui * da3[static_cast<std::size_t>(j)];
-      d += w[j] * da3[static_cast<std::size_t>(j)];
-    }
-    if (i < l.h2) dpooled[static_cast<std::size_t>(i)] = d;
-  }
+  std::vector<float> du(u.size());  // the pooled values' gradients first, then the globals' (not used)
+  DenseBackward(u.data(), l.h2 + l.f, da3.data(), l.h3, p + l.w3, g + l.w3, du.data());
   // Through the max: only the point that gave a pooled value receives its gradient.
   std::vector<float> dh1(static_cast<std::size_t>(n) * l.h1, 0.f);
   std::vector<char> reached(static_cast<std::size_t>(n), 0);
   for (int k = 0; k < l.h2; ++k) {
     const int q = arg[static_cast<std::size_t>(k)];
     if (q < 0) continue;
-    const float d = dpooled[static_cast<std::size_t>(k)];
+    const float d = du[static_cast<std::size_t>(k)];
     g[l.b2 + static_cast<std::size_t>(k)] += d;
     reached[static_cast<std::size_t>(q)] = 1;
     const float* hq = &h1[static_cast<std::size_t>(q) * l.h1];
@@ -354,11 +356,10 @@ PointNetwork PointNetwork::Train(const PointNetworkTrainingSet& data, const Poin
     const double variance = std::max(0.0, square / n - mean * mean);
     net.global_mean_[static_cast<std::size_t>(j)] = static_cast<float>(mean);
     net.global_inverse_std_[static_cast<std::size_t>(j)] = variance > 1e-12 ? static_cast<float>(1.0 / std::sqrt(variance)) : 0.f;
-    for (int s = 0; s < n; ++s) {
-      global[static_cast<std::size_t>(s) * f + j] =
-          (data.global_features[static_cast<std::size_t>(s) * f + j] - net.global_mean_[static_cast<std::size_t>(j)]) *
-          net.global_inverse_std_[static_cast<std::size_t>(j)];
-    }
+  }
+  for (int s = 0; f > 0 && s < n; ++s) {
+    const std::vector<float> row = net.Standardized(&data.global_features[static_cast<std::size_t>(s) * f]);
+    std::copy(row.begin(), row.end(), global.begin() + static_cast<std::ptrdiff_t>(s) * f);
   }
   const std::size_t size = net.params_.size();
   std::vector<float> m(size, 0.f), v(size, 0.f), step_gradient(size);
