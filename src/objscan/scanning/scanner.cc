@@ -289,7 +289,8 @@ struct Scanner::State {
   }
 
   // --- analysis: C, R, complete / noise objects ---------------------------------------------------
-  void Analyze(StepRecord* step) {
+  // `final_analysis`: unions of components are matched as their members are now (the report reads it).
+  void Analyze(StepRecord* step, bool final_analysis = false) {
     Stopwatch w;
     UpdateStructure();
     const segmentation::ComponentGraph& graph = segmenter.Components(&surface);
@@ -327,7 +328,7 @@ struct Scanner::State {
     for (const auto& [a, b] : graph.Edges()) {
       if (included.count(a) && included.count(b)) input.edges.emplace_back(a, b);
     }
-    post = post_segmenter.Update(input);
+    post = post_segmenter.Update(input, final_analysis);
     Charge(step, &StageTimes::recognize, w.ElapsedMs());
     step->num_components = static_cast<int>(input.components.size());
     step->num_objects = static_cast<int>(post.objects.size());
@@ -838,7 +839,7 @@ struct Scanner::State {
   void FinalAnalysis() {
     StepRecord final_step;
     RefreshNavigation();
-    Analyze(&final_step);
+    Analyze(&final_step, /*final_analysis=*/true);
   }
 
   // The floor and walls the robot took for the room's structure.
