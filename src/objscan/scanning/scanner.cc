@@ -289,8 +289,7 @@ struct Scanner::State {
   }
 
   // --- analysis: C, R, complete / noise objects ---------------------------------------------------
-  // `final_analysis`: unions of components are matched as their members are now (the report reads it).
-  void Analyze(StepRecord* step, bool final_analysis = false) {
+  void Analyze(StepRecord* step) {
     Stopwatch w;
     UpdateStructure();
     const segmentation::ComponentGraph& graph = segmenter.Components(&surface);
@@ -328,7 +327,7 @@ struct Scanner::State {
     for (const auto& [a, b] : graph.Edges()) {
       if (included.count(a) && included.count(b)) input.edges.emplace_back(a, b);
     }
-    post = post_segmenter.Update(input, final_analysis);
+    post = post_segmenter.Update(input);
     Charge(step, &StageTimes::recognize, w.ElapsedMs());
     step->num_components = static_cast<int>(input.components.size());
     step->num_objects = static_cast<int>(post.objects.size());
@@ -839,7 +838,7 @@ struct Scanner::State {
   void FinalAnalysis() {
     StepRecord final_step;
     RefreshNavigation();
-    Analyze(&final_step, /*final_analysis=*/true);
+    Analyze(&final_step);
   }
 
   // The floor and walls the robot took for the room's structure.

@@ -1,7 +1,6 @@
 #include "objscan/segmentation/post_segmenter.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -24,7 +23,6 @@ void PostSegmenterOptions::Validate() const {
                   "must be max, mean or min");
   config::RequireInRange("merge_min_gain", merge_min_gain, -1.0, 1.0);
   config::RequireInRange("object_merge_min_gain", object_merge_min_gain, -1.0, 1.0);
-  config::RequireNonNegative("group_rematch_growth_fraction", group_rematch_growth_fraction);
   alpha_expansion.Validate();
 }
 
@@ -80,78 +78,52 @@ PostSegmenter::GroupKey PostSegmenter::KeyOf(const PostSegmenterInput& input, co
   return key;
 }
 
-std::vector<std::int32_t> PostSegmenter::IdsOf(const GroupKey& key) {
+const MatchResult& PostSegmenter::GroupMatches(const PostSegmenterInput& input, const std::vector<int>& members,
+                                               PostSegmenterStats* stats) {
+  GroupKey key = KeyOf(input, members);
+  auto it = group_cache_.find(key);
+  if (it != group_cache_.end()) {
+    if (stats != nullptr) ++stats->group_cache_hits;
+    it->second.used = true;
+    return it->second.result;
+  }
   std::vector<std::int32_t> ids;
   ids.reserve(key.size());
   for (const auto& k : key) ids.push_back(k.first);
-  return ids;
-}
-
-double PostSegmenter::SizeOf(const PostSegmenterInput& input, const std::vector<int>& members) {
-  double n = 0.0;
-  for (int i : members) n += static_cast<double>(input.components[static_cast<std::size_t>(i)].num_points);
-  return n;
-}
-
-PostSegmenter::GroupEntry* PostSegmenter::FindGroup(const GroupKey& key, double size, bool exact) {
-  auto it = group_cache_.find(IdsOf(key));
-  if (it == group_cache_.end()) return nullptr;
-  GroupEntry& entry = it->second;
-  const bool same_revisions = entry.matched_key == key;
-  const double fraction = exact || exact_unions_ ? 0.0 : options_.group_rematch_growth_fraction;
-  // Sizes unknown (num_points 0): only the revisions tell.
-  const bool within_growth = fraction > 0.0 && entry.matched_size > 0.0 &&
-                             std::abs(size - entry.matched_size) <= fraction * entry.matched_size;
-  if (!same_revisions && !within_growth) return nullptr;
-  entry.used = true;
-  return &entry;
-}
-
-const MatchResult& PostSegmenter::GroupMatches(const PostSegmenterInput& input, const std::vector<int>& members,
-                                               PostSegmenterStats* stats, bool exact) {
-  GroupKey key = KeyOf(input, members);
-  const double size = SizeOf(input, members);
-  if (GroupEntry* cached = FindGroup(key, size, exact)) {
-    if (stats != nullptr) ++stats->group_cache_hits;
-    return cached->result;
-  }
-  std::vector<std::int32_t> ids = IdsOf(key);
   if (stats != nullptr) ++stats->group_queries;
-  GroupEntry& entry = group_cache_[ids];
+  GroupEntry entry;
   entry.result = matcher_->Match(ids, MatchScope::kFullModels);
-  entry.matched_key = std::move(key);
-  entry.matched_size = size;
   entry.used = true;
-  return entry.result;
+  return group_cache_.emplace(std::move(key), std::move(entry)).first->second.result;
 }
 
 void PostSegmenter::PrefetchGroups(const PostSegmenterInput& input, const std::vector<std::vector<int>>& unions,
                                    PostSegmenterStats* stats) {
   std::vector<GroupKey> missing;
-  std::vector<double> missing_sizes;
   std::vector<std::vector<std::int32_t>> queries;
   for (const std::vector<int>& members : unions) {
     GroupKey key = KeyOf(input, members);
-    const double size = SizeOf(input, members);
-    if (FindGroup(key, size, /*exact=*/false) != nullptr) {
+    auto it = group_cache_.find(key);
+    if (it != group_cache_.end()) {
       ++stats->group_cache_hits;
+      it->second.used = true;
       continue;
     }
     if (std::find(missing.begin(), missing.end(), key) != missing.end()) continue;
-    queries.push_back(IdsOf(key));
+    std::vector<std::int32_t> ids;
+    for (const auto& k : key) ids.push_back(k.first);
+    queries.push_back(std::move(ids));
     missing.push_back(std::move(key));
-    missing_sizes.push_back(size);
   }
   if (queries.empty()) return;
   std::vector<MatchResult> results = matcher_->MatchBatch(queries, MatchScope::kFullModels);
   if (results.size() != queries.size()) throw InputError("PostSegmenter: matcher returned a wrong batch size");
   stats->group_queries += static_cast<int>(queries.size());
   for (std::size_t q = 0; q < missing.size(); ++q) {
-    GroupEntry& entry = group_cache_[queries[q]];
-    entry.matched_key = std::move(missing[q]);
-    entry.matched_size = missing_sizes[q];
+    GroupEntry entry;
     entry.result = std::move(results[q]);
     entry.used = true;
+    group_cache_[std::move(missing[q])] = std::move(entry);
   }
 }
 
@@ -276,8 +248,7 @@ void PostSegmenter::MergeAdjacentObjects(const PostSegmenterInput& input, const 
   }
 }
 
-PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input, bool exact_unions) {
-  exact_unions_ = exact_unions;
+PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input) {
   PostSegmentation out;
   PostSegmenterStats& stats = out.stats;
   const int n = static_cast<int>(input.components.size());
@@ -484,7 +455,7 @@ PostSegmentation PostSegmenter::Update(const PostSegmenterInput& input, bool exa
   for (auto& [members, label] : parts) {
     PostSegmentedObject object;
     if (label != none_label) object.category = label_category[static_cast<std::size_t>(label)];
-    object.full_model_matches = GroupMatches(input, members, &stats, /*exact=*/true);
+    object.full_model_matches = GroupMatches(input, members, &stats);
     object.objectness = MaxObjectness(object.full_model_matches);
     if (object.objectness < options_.noise_objectness) {
       object.status = ObjectStatus::kNoise;

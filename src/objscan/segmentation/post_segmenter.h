@@ -77,14 +77,6 @@ struct PostSegmenterOptions {
   // blocks more useful merges than harmful ones (built-in database precision 34.2 -> 30.6, NBOs
   // 37.6 -> 48.5; docs/results/oasc-dev-2026-11-26-loop-objects-of-interest.md).
   bool object_merge_keep_larger_fit = false;
-  // A union of components (an adjacent pair, a merge candidate; not an object's own match) keeps its
-  // cached full-model match while its members are the same components and its total size has changed by at most this
-  // fraction of its size when it was matched, even when a member was queried again (its revision
-  // changed). 0 = the union is queried again whenever a member's revision changes. Why: a member's
-  // revision follows its own growth (scanner.rematch_growth_fraction), so a small part that doubled
-  // made every union holding it, however large, query again; in the largest OASC room that was
-  // 40% of about 35000 union queries, most of its CPU.
-  double group_rematch_growth_fraction = 0.0;
   AlphaExpansionOptions alpha_expansion;
 
   template <class V>
@@ -101,7 +93,6 @@ struct PostSegmenterOptions {
     v("merge_objects", merge_objects);
     v("object_merge_min_gain", object_merge_min_gain);
     v("object_merge_keep_larger_fit", object_merge_keep_larger_fit);
-    v("group_rematch_growth_fraction", group_rematch_growth_fraction);
     v("alpha_expansion", alpha_expansion);
   }
   void Validate() const;
@@ -172,9 +163,7 @@ class PostSegmenter {
   // One post-segmentation of the current components. Queries the matcher only for components, pairs
   // and groups whose (id, revision) content is not cached; entries unused by this step are dropped.
   // Throws InputError on duplicate component ids or edges naming unknown components.
-  // `exact_unions`: every union whose members' revisions changed is queried again, whatever
-  // group_rematch_growth_fraction says (the run's last post-segmentation, which the report reads).
-  PostSegmentation Update(const PostSegmenterInput& input, bool exact_unions = false);
+  PostSegmentation Update(const PostSegmenterInput& input);
 
   // Forget every cached match (e.g. after the database changed).
   void ClearCache();
@@ -182,14 +171,10 @@ class PostSegmenter {
   const PostSegmenterOptions& options() const { return options_; }
 
  private:
-  // (id, revision) of each member, ascending by id: what a union of components was matched on.
+  // (id, revision) of each member, ascending by id: the cache key of a union of components.
   using GroupKey = std::vector<std::pair<std::int32_t, std::uint64_t>>;
-  // The members' (id, revision) of a union of components (by index into the input).
+  // The cache key of a union of components (by index into the input).
   static GroupKey KeyOf(const PostSegmenterInput& input, const std::vector<int>& members);
-  // The ids of a GroupKey: the group cache's key.
-  static std::vector<std::int32_t> IdsOf(const GroupKey& key);
-  // Total num_points of a union's members.
-  static double SizeOf(const PostSegmenterInput& input, const std::vector<int>& members);
 
   struct ComponentEntry {
     std::uint64_t revision = 0;
@@ -203,21 +188,13 @@ class PostSegmenter {
     bool used = false;
   };
   struct GroupEntry {
-    GroupKey matched_key;     // the members' revisions when it was matched
-    double matched_size = 0;  // their total num_points then
     MatchResult result;
     bool used = false;
   };
-  // The cached entry of a union that is still valid (same revisions, or unless `exact` within
-  // group_rematch_growth_fraction of its matched size), marked used; null when it must be queried.
-  GroupEntry* FindGroup(const GroupKey& key, double size, bool exact);
-  bool exact_unions_ = false;  // of the Update running
 
   // Full-model matches of the union of components (by index into the current input).
-  // `exact`: queried again whenever a member's revision changed (an object's own match, which decides
-  // its status and the model that replaces it), whatever group_rematch_growth_fraction says.
   const MatchResult& GroupMatches(const PostSegmenterInput& input, const std::vector<int>& members,
-                                  PostSegmenterStats* stats, bool exact = false);
+                                  PostSegmenterStats* stats);
   // Fills the group cache for these unions (indices into the current input) with one batch query.
   void PrefetchGroups(const PostSegmenterInput& input, const std::vector<std::vector<int>>& unions,
                       PostSegmenterStats* stats);
@@ -235,7 +212,7 @@ class PostSegmenter {
   ComponentMatcher* matcher_;
   std::unordered_map<std::int32_t, ComponentEntry> component_cache_;
   std::map<std::pair<std::int32_t, std::int32_t>, PairEntry> pair_cache_;
-  std::map<std::vector<std::int32_t>, GroupEntry> group_cache_;  // by member ids
+  std::map<GroupKey, GroupEntry> group_cache_;
 };
 
 }  // namespace objscan::segmentation

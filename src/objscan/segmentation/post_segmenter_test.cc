@@ -527,61 +527,6 @@ TEST(PostSegmenterTest, GainSmoothnessWarmStepQueriesOnlyWhatChanged) {
   EXPECT_EQ(warm.objects.size(), 50u);
 }
 
-// group_rematch_growth_fraction: a union whose member was queried again keeps its match while the
-// union's total size stays within the fraction of the size it was matched at; growth accumulates
-// against that size, and without sizes (num_points 0) only the revisions tell.
-TEST(PostSegmenterTest, GroupRematchGrowthFractionKeepsUnionsThatBarelyGrew) {
-  std::vector<FakeMatcher::TrueObject> objects;
-  PostSegmenterInput sized = ChainInput(&objects);
-  for (auto& c : sized.components) c.num_points = 100;
-  PostSegmenterInput unsized = ChainInput(&objects);
-  const auto grow = [](PostSegmenterInput* input, std::uint64_t revision, std::size_t num_points) {
-    for (int j = 0; j < 10; ++j) {
-      auto& c = input->components[static_cast<std::size_t>(10 * j)];
-      c.revision = revision;
-      if (c.num_points > 0) c.num_points = num_points;
-    }
-  };
-  for (const double fraction : {0.0, 0.2}) {
-    for (PostSegmenterInput* input : {&sized, &unsized}) {
-      SCOPED_TRACE(::testing::Message() << "fraction " << fraction << (input == &sized ? " sized" : " unsized"));
-      PostSegmenterInput step = *input;
-      FakeMatcher matcher(objects);
-      PostSegmenterOptions options;
-      options.merge_objects = false;
-      options.group_rematch_growth_fraction = fraction;
-      PostSegmenter segmenter(options, &matcher);
-      segmenter.Update(step);
-      ASSERT_EQ(matcher.full_calls, 100 + 99);
-      // 10 components grow by 30% (100 -> 130 points): each is queried alone again; the 19 pairs
-      // holding one grow by 15% (200 -> 230), within 20%, but the 10 of them that are objects are
-      // queried again for their own match (exact).
-      grow(&step, 2, 130);
-      matcher.ResetCounts();
-      const PostSegmentation warm = segmenter.Update(step);
-      const bool tolerant = fraction > 0.0 && input == &sized;
-      EXPECT_EQ(matcher.component_calls, 10);
-      EXPECT_EQ(matcher.full_calls, tolerant ? 10 + 10 : 10 + 19);
-      EXPECT_EQ(warm.stats.group_queries, matcher.full_calls);
-      EXPECT_EQ(warm.objects.size(), 50u);
-      // They grow again to 160: the pairs are now 30% above the size they were matched at.
-      grow(&step, 3, 160);
-      matcher.ResetCounts();
-      segmenter.Update(step);
-      EXPECT_EQ(matcher.full_calls, 10 + 19);
-      // The run's last post-segmentation matches every changed union anew.
-      grow(&step, 4, 170);
-      matcher.ResetCounts();
-      segmenter.Update(step, /*exact_unions=*/true);
-      EXPECT_EQ(matcher.full_calls, 10 + 19);
-    }
-  }
-  PostSegmenterOptions bad;
-  bad.group_rematch_growth_fraction = -0.1;
-  FakeMatcher matcher(objects);
-  EXPECT_THROW(PostSegmenter(bad, &matcher), ConfigError);
-}
-
 // Object merging asks for unions of adjacent objects; an unchanged input asks nothing the second time.
 TEST(PostSegmenterTest, ObjectMergingWarmStepQueriesNothingNew) {
   std::vector<FakeMatcher::TrueObject> objects;
@@ -643,8 +588,7 @@ TEST(PostSegmenterTest, OptionsListEveryField) {
   EXPECT_EQ(keys, (std::vector<std::string>{"none_label_cost", "complete_objectness", "noise_objectness",
                                             "split_instances", "graph_cuts", "smoothness", "smoothness_scale",
                                             "merge_min_gain", "gain_reference", "merge_objects",
-                                            "object_merge_min_gain", "object_merge_keep_larger_fit", "group_rematch_growth_fraction",
-                                            "alpha_expansion.max_sweeps",
+                                            "object_merge_min_gain", "object_merge_keep_larger_fit", "alpha_expansion.max_sweeps",
                                             "alpha_expansion.min_improvement"}));
 }
 
