@@ -286,7 +286,7 @@ std::vector<float> Flipped(const EncodedPointSet& set, int flip) {
 
 std::vector<double> PointNetwork::Predict(const EncodedPointSet& set, const float* global_features) const {
   if (!trained() || set.num_points() == 0 || (num_global_features_ > 0 && global_features == nullptr)) return {};
-  const std::vector<float> global = num_global_features_ > 0 ? Standardized(global_features) : std::vector<float>{};
+  const std::vector<float> global = Standardized(global_features);
   std::vector<double> mean(static_cast<std::size_t>(num_classes_), 0.0);
   std::vector<float> probabilities(static_cast<std::size_t>(num_classes_));
   for (int flip = 0; flip < 4; ++flip) {
@@ -298,14 +298,14 @@ std::vector<double> PointNetwork::Predict(const EncodedPointSet& set, const floa
 }
 
 std::vector<double> PointNetwork::Probabilities(const EncodedPointSet& set, const float* global_features) const {
-  const std::vector<float> global = num_global_features_ > 0 ? Standardized(global_features) : std::vector<float>{};
+  const std::vector<float> global = Standardized(global_features);
   std::vector<float> p(static_cast<std::size_t>(num_classes_));
   Backward(set.channels.data(), set.num_points(), global.data(), -1, 0.f, p.data());
   return std::vector<double>(p.begin(), p.end());
 }
 
 std::vector<float> PointNetwork::Gradient(const EncodedPointSet& set, const float* global_features, int label) const {
-  const std::vector<float> global = num_global_features_ > 0 ? Standardized(global_features) : std::vector<float>{};
+  const std::vector<float> global = Standardized(global_features);
   std::vector<float> g(params_.size(), 0.f);
   Backward(set.channels.data(), set.num_points(), global.data(), label, 1.f, g.data());
   return g;

@@ -119,6 +119,8 @@ class PointNetwork {
   // class probabilities to `gradient` instead.
   double Backward(const float* channels, int num_points, const float* global, int label, float weight,
                   float* gradient) const;
+  // The head's global features standardised as in training; empty (and `global` not read, so it
+  // may be null) when the network reads none.
   std::vector<float> Standardized(const float* global) const;
 
   int num_classes_ = 0;

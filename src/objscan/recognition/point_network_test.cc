@@ -157,6 +157,27 @@ TEST(PointNetworkTest, LearnsShapesItHasNotSeen) {
   EXPECT_GT(PointNetwork::Initialized(3, 1, options).Loss(test), 0.8);
 }
 
+// network_shape_features false: no global features, and Predict takes none (null).
+TEST(PointNetworkTest, LearnsFromThePointsAloneWithoutGlobalFeatures) {
+  const PointNetworkOptions options = SmallOptions();
+  const auto without_globals = [](PointNetworkTrainingSet data) {
+    data.num_global_features = 0;
+    data.global_features.clear();
+    return data;
+  };
+  const PointNetwork net = PointNetwork::Train(without_globals(Shapes(40, 1, options.max_points)), options);
+  ASSERT_TRUE(net.trained());
+  const PointNetworkTrainingSet test = without_globals(Shapes(30, 2, options.max_points));
+  int right = 0;
+  for (int s = 0; s < test.num_samples(); ++s) {
+    const std::vector<double> p = net.Predict(test.sets[static_cast<std::size_t>(s)], nullptr);
+    ASSERT_EQ(p.size(), 3u);
+    EXPECT_NEAR(p[0] + p[1] + p[2], 1.0, 1e-6);
+    if (std::max_element(p.begin(), p.end()) - p.begin() == test.labels[static_cast<std::size_t>(s)]) ++right;
+  }
+  EXPECT_GE(right, test.num_samples() * 9 / 10);
+}
+
 TEST(PointNetworkTest, SameWeightsAtAnyThreadCount) {
   PointNetworkOptions options = SmallOptions();
   options.epochs = 2;
